@@ -1,0 +1,292 @@
+#include "libs/dds/participant.h"
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+
+namespace ssl::dds {
+
+namespace fdds = eprosima::fastdds::dds;
+namespace fs = std::filesystem;
+
+namespace detail {
+
+ParticipantState::~ParticipantState() {
+  if (participant == nullptr) return;
+  // Writers and readers are gone (they hold this state); delete what is left, then the participant.
+  participant->delete_contained_entities();
+  fdds::DomainParticipantFactory::get_instance()->delete_participant(participant);
+}
+
+WriterEntities::~WriterEntities() {
+  if (writer != nullptr) publisher->delete_datawriter(writer);
+}
+
+ReaderEntities::~ReaderEntities() {
+  if (reader != nullptr) subscriber->delete_datareader(reader);
+}
+
+void WriterStatus::on_publication_matched(fdds::DataWriter*, const fdds::PublicationMatchedStatus& info) {
+  {
+    std::lock_guard lock(mutex);
+    matched = static_cast<std::size_t>(info.current_count);
+  }
+  changed.notify_all();
+}
+
+void WriterStatus::on_offered_deadline_missed(fdds::DataWriter*, const fdds::OfferedDeadlineMissedStatus&) {
+  ++deadlines_missed;
+}
+
+void WriterStatus::on_offered_incompatible_qos(fdds::DataWriter*, const fdds::OfferedIncompatibleQosStatus&) {
+  ++incompatible_qos;
+}
+
+void WriterStatus::on_liveliness_lost(fdds::DataWriter*, const fdds::LivelinessLostStatus&) { ++liveliness_lost; }
+
+bool WriterStatus::wait_for_matches(std::size_t count, std::chrono::nanoseconds timeout) {
+  std::unique_lock lock(mutex);
+  return changed.wait_for(lock, timeout, [&] { return matched >= count; });
+}
+
+void ReaderStatus::on_data_available(fdds::DataReader*) {
+  if (on_data) on_data();
+  {
+    std::lock_guard lock(mutex);
+    ++data_signals;
+  }
+  changed.notify_all();
+}
+
+void ReaderStatus::on_subscription_matched(fdds::DataReader*, const fdds::SubscriptionMatchedStatus& info) {
+  {
+    std::lock_guard lock(mutex);
+    matched = static_cast<std::size_t>(info.current_count);
+  }
+  changed.notify_all();
+}
+
+void ReaderStatus::on_requested_deadline_missed(fdds::DataReader*,
+                                                const fdds::RequestedDeadlineMissedStatus&) {
+  ++deadlines_missed;
+}
+
+void ReaderStatus::on_requested_incompatible_qos(fdds::DataReader*,
+                                                 const fdds::RequestedIncompatibleQosStatus&) {
+  ++incompatible_qos;
+}
+
+void ReaderStatus::on_sample_lost(fdds::DataReader*, const fdds::SampleLostStatus& info) {
+  samples_lost += static_cast<std::uint64_t>(info.total_count_change);
+}
+
+void ReaderStatus::on_liveliness_changed(fdds::DataReader*, const fdds::LivelinessChangedStatus& info) {
+  {
+    std::lock_guard lock(mutex);
+    alive_writers = info.alive_count;
+  }
+  changed.notify_all();
+}
+
+bool ReaderStatus::wait_for_matches(std::size_t count, std::chrono::nanoseconds timeout) {
+  std::unique_lock lock(mutex);
+  return changed.wait_for(lock, timeout, [&] { return matched >= count; });
+}
+
+bool ReaderStatus::wait_for_data(std::chrono::nanoseconds timeout) {
+  std::unique_lock lock(mutex);
+  if (!changed.wait_for(lock, timeout, [&] { return data_signals != data_consumed; })) return false;
+  data_consumed = data_signals;
+  return true;
+}
+
+std::int64_t to_unix_ns(const eprosima::fastrtps::rtps::Time_t& time) {
+  return static_cast<std::int64_t>(time.seconds()) * 1'000'000'000 + static_cast<std::int64_t>(time.nanosec());
+}
+
+}  // namespace detail
+
+namespace {
+
+/// Loads an XML profiles file into the process-wide Fast DDS factory once. The factory is Fast DDS's own
+/// singleton, so the record of loaded files has to be process-wide too.
+Status load_profiles_once(const std::string& path) {
+  static std::mutex mutex;
+  static std::set<std::string> loaded;
+  std::lock_guard lock(mutex);
+  if (loaded.count(path) != 0) return {};
+  if (!fs::exists(path)) return Error{"QoS profiles file '" + path + "' does not exist"};
+  if (fdds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(path) != ReturnCode_t::RETCODE_OK) {
+    return Error{"QoS profiles file '" + path + "' could not be parsed (Fast DDS printed the reason)"};
+  }
+  loaded.insert(path);
+  return {};
+}
+
+std::string partition_profile(TopicScope scope, std::optional<TeamColor> team, std::string_view kind) {
+  if (scope == TopicScope::kShared) return "shared." + std::string(kind);
+  return "team." + std::string(to_string(*team)) + "." + std::string(kind);
+}
+
+Status check_team(std::string_view topic, TopicScope scope, std::optional<TeamColor> team) {
+  if (scope == TopicScope::kTeam && !team) {
+    return Error{"topic '" + std::string(topic) + "' is team-scoped: a team (blue or yellow) is required"};
+  }
+  if (scope == TopicScope::kShared && team) {
+    return Error{"topic '" + std::string(topic) + "' is shared by both teams: no team may be given"};
+  }
+  return {};
+}
+
+Result<fdds::Topic*> find_or_create_topic(detail::ParticipantState& state, std::string_view name,
+                                          std::unique_ptr<fdds::TopicDataType> support) {
+  const std::string key(name);
+  if (auto it = state.topics.find(key); it != state.topics.end()) return it->second;
+  fdds::TypeSupport type(support.release());
+  const std::string type_name = type.get_type_name();
+  // Registering an already registered type of the same name is accepted by Fast DDS.
+  if (type.register_type(state.participant) != ReturnCode_t::RETCODE_OK) {
+    return Error{"cannot register DDS type '" + type_name + "'"};
+  }
+  fdds::Topic* topic = state.participant->create_topic(key, type_name, fdds::TOPIC_QOS_DEFAULT);
+  if (topic == nullptr) return Error{"cannot create DDS topic '" + key + "'"};
+  state.topics.emplace(key, topic);
+  return topic;
+}
+
+}  // namespace
+
+Result<std::string> find_qos_file() {
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("SSL_QOS_FILE"); env != nullptr && *env != '\0') {
+    if (!fs::exists(env)) return Error{std::string("SSL_QOS_FILE names '") + env + "', which does not exist"};
+    return std::string(env);
+  }
+  std::error_code error;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    candidates.push_back(exe.parent_path() / "../../deploy/qos/profiles.xml");  // build/<dir>/<exe>
+    candidates.push_back(exe.parent_path() / "../share/ssl/qos/profiles.xml");  // <prefix>/bin/<exe>
+  }
+  candidates.push_back(fs::current_path(error) / "deploy/qos/profiles.xml");
+  for (const auto& candidate : candidates) {
+    if (fs::exists(candidate, error)) return fs::weakly_canonical(candidate, error).string();
+  }
+  std::string tried;
+  for (const auto& candidate : candidates) tried += " " + candidate.string();
+  return Error{"cannot find the QoS profiles file deploy/qos/profiles.xml (tried:" + tried +
+               "); set SSL_QOS_FILE"};
+}
+
+Result<Participant> Participant::create(const ParticipantOptions& options) {
+  if (options.domain_id < 0 || options.domain_id > 232) {
+    return Error{"DDS domain id " + std::to_string(options.domain_id) + " is out of range [0, 232]"};
+  }
+  std::string qos_file = options.qos_file;
+  if (qos_file.empty()) {
+    auto found = find_qos_file();
+    if (!found) return found.error();
+    qos_file = *found;
+  }
+  if (auto loaded = load_profiles_once(qos_file); !loaded) return loaded.error();
+
+  auto* factory = fdds::DomainParticipantFactory::get_instance();
+  fdds::DomainParticipantQos qos;
+  if (factory->get_participant_qos_from_profile("ssl.participant", qos) != ReturnCode_t::RETCODE_OK) {
+    return Error{"QoS profiles file '" + qos_file + "' has no participant profile 'ssl.participant'"};
+  }
+  qos.name(options.name);
+  auto state = std::make_shared<detail::ParticipantState>();
+  state->domain_id = options.domain_id;
+  state->qos_file = qos_file;
+  state->participant = factory->create_participant(static_cast<fdds::DomainId_t>(options.domain_id), qos);
+  if (state->participant == nullptr) {
+    return Error{"cannot create a DDS participant on domain " + std::to_string(options.domain_id)};
+  }
+  return Participant(std::move(state));
+}
+
+int Participant::domain_id() const { return state_->domain_id; }
+const std::string& Participant::qos_file() const { return state_->qos_file; }
+
+Result<std::shared_ptr<detail::WriterEntities>> Participant::create_writer(
+    std::string_view topic_name, TopicScope scope, std::optional<TeamColor> team,
+    std::unique_ptr<fdds::TopicDataType> support) {
+  if (auto ok = check_team(topic_name, scope, team); !ok) return ok.error();
+  std::lock_guard lock(state_->mutex);
+  auto topic = find_or_create_topic(*state_, topic_name, std::move(support));
+  if (!topic) return topic.error();
+
+  const std::string publisher_profile = partition_profile(scope, team, "publisher");
+  fdds::Publisher*& publisher = state_->publishers[publisher_profile];
+  if (publisher == nullptr) {
+    publisher = state_->participant->create_publisher_with_profile(publisher_profile);
+    if (publisher == nullptr) {
+      state_->publishers.erase(publisher_profile);
+      return Error{"no publisher profile '" + publisher_profile + "' in " + state_->qos_file};
+    }
+  }
+  auto entities = std::make_shared<detail::WriterEntities>();
+  entities->participant = state_;
+  entities->publisher = publisher;
+  entities->topic = std::string(topic_name);
+  const std::string profile = entities->topic + ".writer";
+  entities->writer = publisher->create_datawriter_with_profile(*topic, profile, &entities->status);
+  if (entities->writer == nullptr) {
+    return Error{"cannot create a writer on '" + entities->topic + "' with QoS profile '" + profile + "' from " +
+                 state_->qos_file};
+  }
+  return entities;
+}
+
+Result<std::shared_ptr<detail::ReaderEntities>> Participant::create_reader(
+    std::string_view topic_name, TopicScope scope, std::optional<TeamColor> team,
+    std::unique_ptr<fdds::TopicDataType> support, std::function<void(detail::ReaderEntities&)> on_data) {
+  if (auto ok = check_team(topic_name, scope, team); !ok) return ok.error();
+  std::lock_guard lock(state_->mutex);
+  auto topic = find_or_create_topic(*state_, topic_name, std::move(support));
+  if (!topic) return topic.error();
+
+  const std::string subscriber_profile = partition_profile(scope, team, "subscriber");
+  fdds::Subscriber*& subscriber = state_->subscribers[subscriber_profile];
+  if (subscriber == nullptr) {
+    subscriber = state_->participant->create_subscriber_with_profile(subscriber_profile);
+    if (subscriber == nullptr) {
+      state_->subscribers.erase(subscriber_profile);
+      return Error{"no subscriber profile '" + subscriber_profile + "' in " + state_->qos_file};
+    }
+  }
+  auto entities = std::make_shared<detail::ReaderEntities>();
+  entities->participant = state_;
+  entities->subscriber = subscriber;
+  entities->topic = std::string(topic_name);
+  if (on_data) {
+    entities->status.on_data = [raw = entities.get(), on_data = std::move(on_data)] { on_data(*raw); };
+  }
+  const std::string profile = entities->topic + ".reader";
+  entities->reader = subscriber->create_datareader_with_profile(*topic, profile, &entities->status);
+  if (entities->reader == nullptr) {
+    return Error{"cannot create a reader on '" + entities->topic + "' with QoS profile '" + profile + "' from " +
+                 state_->qos_file};
+  }
+  return entities;
+}
+
+std::vector<TopicInfo> all_topics() {
+  std::vector<TopicInfo> infos;
+  std::apply(
+      [&](const auto&... spec) {
+        (infos.push_back(TopicInfo{std::string(spec.name),
+                                   typename std::decay_t<decltype(spec)>::Support().getName(), spec.scope,
+                                   spec.writer_profile(), spec.reader_profile(), std::string(spec.description)}),
+         ...);
+      },
+      topics::kAll);
+  return infos;
+}
+
+}  // namespace ssl::dds

@@ -1,0 +1,97 @@
+// Participant: one DDS domain participant of a process, created from the XML profile "ssl.participant",
+// and the factory of typed writers and readers whose QoS comes only from named XML profiles.
+//
+//   auto participant = ssl::dds::Participant::create({.domain_id = 3, .name = "world_model/blue"});
+//   if (!participant) { fail(participant.error().message); }
+//   auto writer = participant->make_writer(ssl::dds::topics::kWorldState, ssl::TeamColor::kBlue);
+//   auto reader = participant->make_reader(ssl::dds::topics::kRefereeState);
+//
+// Lifetime: a Participant is a handle to shared DDS state; writers and readers keep it alive, so entities
+// are always deleted children first. When the last handle goes, every entity is deleted and Fast DDS
+// removes its shared-memory segments (a process must therefore exit through destructors: see
+// libs/common/shutdown.h).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <functional>
+#include <string>
+#include <utility>
+
+#include "libs/common/result.h"
+#include "libs/common/team.h"
+#include "libs/dds/reader.h"
+#include "libs/dds/topics.h"
+#include "libs/dds/writer.h"
+
+namespace ssl::dds {
+
+struct ParticipantOptions {
+  int domain_id = 0;        // DDS domain id, 0..232
+  std::string qos_file;     // Fast DDS XML profiles; empty: find_qos_file()
+  std::string name = "ssl"; // participant name shown to discovery tools, e.g. "world_model/blue"
+};
+
+/// Finds deploy/qos/profiles.xml: $SSL_QOS_FILE, then relative to the executable (build tree
+/// build/<dir>/<exe> or an install prefix share/ssl/qos), then relative to the working directory.
+Result<std::string> find_qos_file();
+
+class Participant {
+ public:
+  /// Loads the QoS profiles (once per file and process) and creates the participant.
+  static Result<Participant> create(const ParticipantOptions& options);
+
+  /// A writer on `spec`'s topic with the profile "<topic>.writer". `team` selects the partition and is
+  /// required for team-scoped topics and rejected for shared ones.
+  template <typename Spec>
+  Result<Writer<typename Spec::Sample>> make_writer(const Spec& spec,
+                                                    std::optional<TeamColor> team = std::nullopt) {
+    auto entities = create_writer(spec.name, spec.scope, team, std::make_unique<typename Spec::Support>());
+    if (!entities) return entities.error();
+    return Writer<typename Spec::Sample>(std::move(*entities));
+  }
+
+  /// A reader on `spec`'s topic with the profile "<topic>.reader"; see make_writer for `team`.
+  template <typename Spec>
+  Result<Reader<typename Spec::Sample>> make_reader(const Spec& spec,
+                                                    std::optional<TeamColor> team = std::nullopt) {
+    auto entities =
+        create_reader(spec.name, spec.scope, team, std::make_unique<typename Spec::Support>(), nullptr);
+    if (!entities) return entities.error();
+    return Reader<typename Spec::Sample>(std::move(*entities));
+  }
+
+  /// A reader that calls `callback(const Sample<T>&)` on the Fast DDS thread for every sample that
+  /// arrives. The callback must be quick and thread-safe with respect to the caller's state.
+  template <typename Spec, typename Callback>
+  Result<Reader<typename Spec::Sample>> make_reader(const Spec& spec, std::optional<TeamColor> team,
+                                                    Callback callback) {
+    using T = typename Spec::Sample;
+    auto on_data = [callback = std::move(callback)](detail::ReaderEntities& entities) mutable {
+      Sample<T> sample;
+      while (Reader<T>::take_next(entities, sample)) callback(std::as_const(sample));
+    };
+    auto entities = create_reader(spec.name, spec.scope, team, std::make_unique<typename Spec::Support>(),
+                                  std::move(on_data));
+    if (!entities) return entities.error();
+    return Reader<T>(std::move(*entities));
+  }
+
+  int domain_id() const;
+  const std::string& qos_file() const;
+
+ private:
+  explicit Participant(std::shared_ptr<detail::ParticipantState> state) : state_(std::move(state)) {}
+
+  Result<std::shared_ptr<detail::WriterEntities>> create_writer(
+      std::string_view topic, TopicScope scope, std::optional<TeamColor> team,
+      std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support);
+  Result<std::shared_ptr<detail::ReaderEntities>> create_reader(
+      std::string_view topic, TopicScope scope, std::optional<TeamColor> team,
+      std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support,
+      std::function<void(detail::ReaderEntities&)> on_data);
+
+  std::shared_ptr<detail::ParticipantState> state_;
+};
+
+}  // namespace ssl::dds
