@@ -173,6 +173,7 @@ Result<std::string> find_qos_file() {
     candidates.push_back(exe.parent_path() / "../share/ssl/qos/profiles.xml");  // <prefix>/bin/<exe>
   }
   candidates.push_back(fs::current_path(error) / "deploy/qos/profiles.xml");
+  candidates.push_back(fs::path(SSL_SOURCE_DIR) / "deploy/qos/profiles.xml");  // the tree this was built from
   for (const auto& candidate : candidates) {
     if (fs::exists(candidate, error)) return fs::weakly_canonical(candidate, error).string();
   }

@@ -33,7 +33,8 @@ struct ParticipantOptions {
 };
 
 /// Finds deploy/qos/profiles.xml: $SSL_QOS_FILE, then relative to the executable (build tree
-/// build/<dir>/<exe> or an install prefix share/ssl/qos), then relative to the working directory.
+/// build/<dir>/<exe> or an install prefix share/ssl/qos), relative to the working directory, and last in
+/// the source tree the binary was built from.
 Result<std::string> find_qos_file();
 
 class Participant {

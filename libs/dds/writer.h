@@ -45,6 +45,17 @@ class Writer {
     return entities_->status.wait_for_matches(count, timeout);
   }
 
+  /// For reliable topics: waits until every matched reader acknowledged every sample; false on timeout.
+  /// Call before destroying a writer whose last samples must arrive.
+  bool wait_for_acknowledgments(std::chrono::nanoseconds timeout) {
+    const auto seconds = std::chrono::duration_cast<std::chrono::seconds>(timeout);
+    const auto nanos = std::chrono::duration_cast<std::chrono::nanoseconds>(timeout - seconds);
+    return entities_->writer->wait_for_acknowledgments(
+               eprosima::fastrtps::Duration_t(static_cast<std::int32_t>(seconds.count()),
+                                              static_cast<std::uint32_t>(nanos.count()))) ==
+           ReturnCode_t::RETCODE_OK;
+  }
+
   WriterCounters counters() const {
     std::lock_guard lock(entities_->status.mutex);
     return {entities_->written.load(), entities_->write_failures.load(),

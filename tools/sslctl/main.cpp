@@ -1,0 +1,119 @@
+// sslctl: inspect and drive a running stack from the command line.
+//   sslctl topic list | echo TOPIC | hz TOPIC | pub TOPIC JSON
+//   sslctl estop on|off
+//   sslctl health
+// Every DDS command takes --domain D (and --team blue|yellow for team-scoped topics).
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "tools/sslctl/commands.h"
+
+namespace {
+
+void add_dds_flags(CLI::App& command, ssl::sslctl::DdsOptions& options, std::string& team) {
+  command.add_option("--domain", options.domain_id, "DDS domain id")->check(CLI::Range(0, 232));
+  command.add_option("--team", team, "team partition for team-scoped topics")
+      ->check(CLI::IsMember({"blue", "yellow"}));
+}
+
+void apply_team(ssl::sslctl::DdsOptions& options, const std::string& team) {
+  if (!team.empty()) options.team = ssl::parse_team(team);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ssl::ShutdownSignal shutdown;  // before any DDS thread exists
+  CLI::App app{"sslctl: inspect and drive the SSL stack (topics, e-stop, health)", "sslctl"};
+  app.require_subcommand(1);
+
+  auto* topic = app.add_subcommand("topic", "DDS topics of the stack");
+  topic->require_subcommand(1);
+
+  bool list_json = false;
+  auto* list = topic->add_subcommand("list", "every topic with its type, scope and QoS profiles");
+  list->add_flag("--json", list_json, "one JSON object per line");
+
+  ssl::sslctl::EchoOptions echo;
+  std::string echo_team;
+  auto* echo_cmd = topic->add_subcommand("echo", "print samples as JSON, one object per line");
+  echo_cmd->add_option("topic", echo.topic, "topic name (see `sslctl topic list`)")->required();
+  echo_cmd->add_option("--count", echo.count, "exit after this many samples (0: run until Ctrl-C)");
+  echo_cmd->add_option("--timeout", echo.timeout_s, "fail when --count samples did not arrive within S seconds")
+      ->check(CLI::NonNegativeNumber);
+  echo_cmd->add_flag("--with-meta", echo.with_meta, "wrap samples with their DDS time stamps");
+  add_dds_flags(*echo_cmd, echo.dds, echo_team);
+
+  ssl::sslctl::HzOptions hz;
+  std::string hz_team;
+  auto* hz_cmd = topic->add_subcommand("hz", "measure a topic's rate");
+  hz_cmd->add_option("topic", hz.topic, "topic name")->required();
+  hz_cmd->add_option("--window", hz.window_s, "report period and averaging window, s")
+      ->check(CLI::PositiveNumber);
+  hz_cmd->add_option("--duration", hz.duration_s, "stop after S seconds (0: run until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber);
+  add_dds_flags(*hz_cmd, hz.dds, hz_team);
+
+  ssl::sslctl::PubOptions pub;
+  std::string pub_team;
+  auto* pub_cmd = topic->add_subcommand("pub", "publish a sample written as JSON (missing fields keep defaults)");
+  pub_cmd->add_option("topic", pub.topic, "topic name")->required();
+  pub_cmd->add_option("json", pub.samples, "samples as JSON objects, e.g. '{\"engaged\": true}'")->required();
+  pub_cmd->add_option("--repeat", pub.repeat, "write the samples N times")->check(CLI::Range(1, 1000000000));
+  pub_cmd->add_option("--rate", pub.rate_hz, "write rate when repeating, Hz")->check(CLI::PositiveNumber);
+  pub_cmd->add_option("--wait-readers", pub.wait_readers, "first wait until N readers matched");
+  pub_cmd->add_option("--wait-timeout", pub.wait_timeout_s, "give up waiting for readers after S seconds")
+      ->check(CLI::PositiveNumber);
+  pub_cmd->add_option("--linger", pub.linger_s,
+                      "keep the writer alive S seconds afterwards for late joiners (-1: until Ctrl-C)");
+  add_dds_flags(*pub_cmd, pub.dds, pub_team);
+
+  ssl::sslctl::DdsOptions estop_dds;
+  std::string estop_team;
+  std::string estop_state;
+  std::string estop_reason = "operator";
+  double estop_linger = -1;
+  auto* estop_cmd = app.add_subcommand("estop", "engage (on) or release (off) the emergency stop");
+  estop_cmd->add_option("state", estop_state, "on or off")->required()->check(CLI::IsMember({"on", "off"}));
+  estop_cmd->add_option("--reason", estop_reason, "why, shown to every service");
+  estop_cmd->add_option("--linger", estop_linger,
+                        "keep asserting for S seconds (-1, the default: until Ctrl-C)");
+  add_dds_flags(*estop_cmd, estop_dds, estop_team);
+
+  ssl::sslctl::DdsOptions health_dds;
+  std::string health_team;
+  double health_listen = 2.0;
+  bool health_json = false;
+  auto* health_cmd = app.add_subcommand("health", "rate, latency and error counters of every service");
+  health_cmd->add_option("--listen", health_listen, "listen this many seconds")->check(CLI::PositiveNumber);
+  health_cmd->add_flag("--json", health_json, "one JSON object per service");
+  add_dds_flags(*health_cmd, health_dds, health_team);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  }
+
+  if (list->parsed()) return ssl::sslctl::topic_list(list_json, std::cout);
+  if (echo_cmd->parsed()) {
+    apply_team(echo.dds, echo_team);
+    return ssl::sslctl::topic_echo(echo, shutdown, std::cout, std::cerr);
+  }
+  if (hz_cmd->parsed()) {
+    apply_team(hz.dds, hz_team);
+    return ssl::sslctl::topic_hz(hz, shutdown, std::cout, std::cerr);
+  }
+  if (pub_cmd->parsed()) {
+    apply_team(pub.dds, pub_team);
+    return ssl::sslctl::topic_pub(pub, shutdown, std::cout, std::cerr);
+  }
+  if (estop_cmd->parsed()) {
+    return ssl::sslctl::estop(estop_state == "on", estop_reason, estop_dds, estop_linger, shutdown, std::cout,
+                              std::cerr);
+  }
+  if (health_cmd->parsed()) {
+    return ssl::sslctl::health(health_dds, health_listen, health_json, shutdown, std::cout, std::cerr);
+  }
+  return 2;
+}
