@@ -119,6 +119,26 @@ TEST(DdsTwoProcessTest, SigtermLeavesNoSharedMemorySegmentsBehind) {
   for (const auto& segment : segments) EXPECT_FALSE(std::filesystem::exists(segment)) << segment << " was left behind";
 }
 
+TEST(DdsTwoProcessTest, HzReportsTheRateOfAWriterProcess) {
+  auto hz = sslctl({"topic", "hz", "robot.feedback", "--team", "yellow", "--domain", "155", "--window", "1",
+                    "--duration", "30"});
+  auto writer = sslctl({"topic", "pub", "robot.feedback", "--team", "yellow", "--domain", "155", "--wait-readers",
+                        "1", "--wait-timeout", "30", "--repeat", "400", "--rate", "100", R"({"robot_id": 4})"});
+  // Reports start with "no rate" until samples flow; wait for a measured one.
+  std::optional<std::string> report;
+  while ((report = hz.read_line(kTimeout)) && report->find(" Hz") == std::string::npos) {}
+  ASSERT_TRUE(report) << hz.drain_stderr();
+  ASSERT_EQ(report->rfind("robot.feedback: ", 0), 0u) << *report;
+  const double rate = std::stod(report->substr(std::string("robot.feedback: ").size()));
+  // A rate is reported, in the right range; this is not a performance check (wide bounds on purpose).
+  EXPECT_GT(rate, 20.0) << *report;
+  EXPECT_LT(rate, 500.0) << *report;
+  hz.signal(SIGINT);
+  EXPECT_EQ(hz.wait(kTimeout), 0);
+  writer.signal(SIGTERM);
+  EXPECT_EQ(writer.wait(kTimeout), 0);
+}
+
 TEST(DdsTwoProcessTest, UnknownTopicAndMalformedSampleGiveClearErrors) {
   auto unknown = sslctl({"topic", "echo", "no.such.topic", "--domain", "154"});
   EXPECT_EQ(unknown.wait(kTimeout), 2);
