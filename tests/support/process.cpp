@@ -3,12 +3,12 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
-#include <thread>
 
 namespace ssl::testing {
 
@@ -106,18 +106,25 @@ void ChildProcess::signal(int signal_number) {
 
 std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {
   if (exit_code_) return exit_code_;
+  // A pidfd becomes readable when the child exits: a blocking wait with a timeout (Linux >= 5.3).
+  const int pidfd = static_cast<int>(syscall(SYS_pidfd_open, pid_, 0));
+  if (pidfd < 0) return std::nullopt;
   const auto deadline = Clock::now() + timeout;
+  std::optional<int> result;
   while (true) {
     int status = 0;
-    const pid_t done = waitpid(pid_, &status, WNOHANG);
-    if (done == pid_) {
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
       exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      return exit_code_;
+      result = exit_code_;
+      break;
     }
-    if (Clock::now() >= deadline) return std::nullopt;
-    // Polling a child's exit status: no portable blocking wait with a timeout exists.
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+    if (left.count() <= 0) break;
+    pollfd fd{pidfd, POLLIN, 0};
+    poll(&fd, 1, static_cast<int>(left.count()) + 1);
   }
+  close(pidfd);
+  return result;
 }
 
 }  // namespace ssl::testing
