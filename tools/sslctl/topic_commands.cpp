@@ -30,19 +30,49 @@ std::string_view scope_name(dds::TopicScope scope) {
   return scope == dds::TopicScope::kTeam ? "team" : "shared";
 }
 
-Result<dds::Participant> open_participant(const DdsOptions& options, const std::string& name) {
-  return dds::Participant::create({.domain_id = options.domain_id, .name = name});
-}
-
 /// The team argument for a topic: required for team-scoped topics, refused for shared ones.
-Result<std::optional<TeamColor>> team_for(dds::TopicScope scope, const std::string& topic,
+Result<std::optional<TeamColor>> team_for(dds::TopicScope scope, std::string_view topic,
                                           const DdsOptions& options) {
   if (scope == dds::TopicScope::kTeam && !options.team) {
-    return Error{"topic '" + topic + "' is team-scoped: add --team blue|yellow"};
+    return Error{"topic '" + std::string(topic) + "' is team-scoped: add --team blue|yellow"};
   }
   if (scope == dds::TopicScope::kShared) return std::optional<TeamColor>{};
   return options.team;
 }
+
+/// Opens a participant and, with `make(participant, spec, team)`, a reader or writer on `spec`'s topic.
+/// On failure prints why to `err`, sets `status` (2 for a usage error, 1 otherwise) and returns nullopt.
+template <typename Spec, typename Make>
+auto open_endpoint(const Spec& spec, const DdsOptions& options, const std::string& participant_name,
+                   std::ostream& err, int& status, Make make)
+    -> std::optional<std::decay_t<decltype(*make(std::declval<dds::Participant&>(), spec, std::nullopt))>> {
+  auto team = team_for(spec.scope, spec.name, options);
+  if (!team) {
+    err << "sslctl: " << team.error().message << '\n';
+    status = 2;
+    return std::nullopt;
+  }
+  auto participant = dds::Participant::create({.domain_id = options.domain_id, .name = participant_name});
+  if (!participant) {
+    err << "sslctl: " << participant.error().message << '\n';
+    status = 1;
+    return std::nullopt;
+  }
+  auto endpoint = make(*participant, spec, *team);
+  if (!endpoint) {
+    err << "sslctl: " << endpoint.error().message << '\n';
+    status = 1;
+    return std::nullopt;
+  }
+  return std::move(*endpoint);
+}
+
+constexpr auto kMakeReader = [](dds::Participant& participant, const auto& spec, std::optional<TeamColor> team) {
+  return participant.make_reader(spec, team);
+};
+constexpr auto kMakeWriter = [](dds::Participant& participant, const auto& spec, std::optional<TeamColor> team) {
+  return participant.make_writer(spec, team);
+};
 
 int unknown_topic(const std::string& topic, std::ostream& err) {
   err << "sslctl: unknown topic '" << topic << "'; `sslctl topic list` shows them all\n";
@@ -79,24 +109,8 @@ int topic_list(bool json, std::ostream& out) {
 int topic_echo(const EchoOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err) {
   int status = 0;
   const bool known = dds::visit_topic(options.topic, [&](const auto& spec) {
-    auto team = team_for(spec.scope, options.topic, options.dds);
-    if (!team) {
-      err << "sslctl: " << team.error().message << '\n';
-      status = 2;
-      return;
-    }
-    auto participant = open_participant(options.dds, "sslctl/echo");
-    if (!participant) {
-      err << "sslctl: " << participant.error().message << '\n';
-      status = 1;
-      return;
-    }
-    auto reader = participant->make_reader(spec, *team);
-    if (!reader) {
-      err << "sslctl: " << reader.error().message << '\n';
-      status = 1;
-      return;
-    }
+    auto reader = open_endpoint(spec, options.dds, "sslctl/echo", err, status, kMakeReader);
+    if (!reader) return;
     const auto deadline = Clock::now() + seconds_to_ns(options.timeout_s);
     std::uint64_t printed = 0;
     while (!shutdown.requested()) {
@@ -130,24 +144,8 @@ int topic_hz(const HzOptions& options, ShutdownSignal& shutdown, std::ostream& o
   }
   int status = 0;
   const bool known = dds::visit_topic(options.topic, [&](const auto& spec) {
-    auto team = team_for(spec.scope, options.topic, options.dds);
-    if (!team) {
-      err << "sslctl: " << team.error().message << '\n';
-      status = 2;
-      return;
-    }
-    auto participant = open_participant(options.dds, "sslctl/hz");
-    if (!participant) {
-      err << "sslctl: " << participant.error().message << '\n';
-      status = 1;
-      return;
-    }
-    auto reader = participant->make_reader(spec, *team);
-    if (!reader) {
-      err << "sslctl: " << reader.error().message << '\n';
-      status = 1;
-      return;
-    }
+    auto reader = open_endpoint(spec, options.dds, "sslctl/hz", err, status, kMakeReader);
+    if (!reader) return;
     const auto window = seconds_to_ns(options.window_s);
     const auto start = Clock::now();
     auto next_report = start + window;
@@ -202,24 +200,8 @@ int topic_pub(const PubOptions& options, ShutdownSignal& shutdown, std::ostream&
         return;
       }
     }
-    auto team = team_for(spec.scope, options.topic, options.dds);
-    if (!team) {
-      err << "sslctl: " << team.error().message << '\n';
-      status = 2;
-      return;
-    }
-    auto participant = open_participant(options.dds, "sslctl/pub");
-    if (!participant) {
-      err << "sslctl: " << participant.error().message << '\n';
-      status = 1;
-      return;
-    }
-    auto writer = participant->make_writer(spec, *team);
-    if (!writer) {
-      err << "sslctl: " << writer.error().message << '\n';
-      status = 1;
-      return;
-    }
+    auto writer = open_endpoint(spec, options.dds, "sslctl/pub", err, status, kMakeWriter);
+    if (!writer) return;
     if (options.wait_readers > 0 &&
         !writer->wait_for_match(options.wait_readers, seconds_to_ns(options.wait_timeout_s))) {
       err << "sslctl: no " << options.wait_readers << " reader(s) on '" << options.topic << "' within "
