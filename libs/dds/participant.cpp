@@ -1,5 +1,7 @@
 #include "libs/dds/participant.h"
 
+#include "libs/common/deploy_files.h"
+
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <unistd.h>
@@ -161,26 +163,11 @@ Result<fdds::Topic*> find_or_create_topic(detail::ParticipantState& state, std::
 }  // namespace
 
 Result<std::string> find_qos_file() {
-  std::vector<fs::path> candidates;
   if (const char* env = std::getenv("SSL_QOS_FILE"); env != nullptr && *env != '\0') {
     if (!fs::exists(env)) return Error{std::string("SSL_QOS_FILE names '") + env + "', which does not exist"};
     return std::string(env);
   }
-  std::error_code error;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
-  if (!error) {
-    candidates.push_back(exe.parent_path() / "../../deploy/qos/profiles.xml");  // build/<dir>/<exe>
-    candidates.push_back(exe.parent_path() / "../share/ssl/qos/profiles.xml");  // <prefix>/bin/<exe>
-  }
-  candidates.push_back(fs::current_path(error) / "deploy/qos/profiles.xml");
-  candidates.push_back(fs::path(SSL_SOURCE_DIR) / "deploy/qos/profiles.xml");  // the tree this was built from
-  for (const auto& candidate : candidates) {
-    if (fs::exists(candidate, error)) return fs::weakly_canonical(candidate, error).string();
-  }
-  std::string tried;
-  for (const auto& candidate : candidates) tried += " " + candidate.string();
-  return Error{"cannot find the QoS profiles file deploy/qos/profiles.xml (tried:" + tried +
-               "); set SSL_QOS_FILE"};
+  return find_deploy_file("qos/profiles.xml");
 }
 
 Result<Participant> Participant::create(const ParticipantOptions& options) {

@@ -32,9 +32,7 @@ struct ParticipantOptions {
   std::string name = "ssl"; // participant name shown to discovery tools, e.g. "world_model/blue"
 };
 
-/// Finds deploy/qos/profiles.xml: $SSL_QOS_FILE, then relative to the executable (build tree
-/// build/<dir>/<exe> or an install prefix share/ssl/qos), relative to the working directory, and last in
-/// the source tree the binary was built from.
+/// Finds deploy/qos/profiles.xml: $SSL_QOS_FILE, else as ssl::find_deploy_file does.
 Result<std::string> find_qos_file();
 
 class Participant {
