@@ -1,0 +1,60 @@
+#include "libs/dds/health.h"
+
+#include <unistd.h>
+
+#include <chrono>
+
+namespace ssl::dds {
+namespace {
+
+std::int64_t wall_clock_unix_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string host_name() {
+  char name[256] = {};
+  if (gethostname(name, sizeof name - 1) != 0) return "unknown";
+  return name;
+}
+
+}  // namespace
+
+Result<HealthReporter> HealthReporter::create(Participant& participant, std::string service) {
+  auto writer = participant.make_writer(topics::kSystemHealth);
+  if (!writer) return writer.error();
+  return HealthReporter(std::move(*writer), std::move(service));
+}
+
+HealthReporter::HealthReporter(Writer<idl::system::Health> writer, std::string service)
+    : writer_(std::move(writer)), service_(std::move(service)), host_(host_name()), start_unix_ns_(wall_clock_unix_ns()) {}
+
+Status HealthReporter::publish(const HealthReport& report) {
+  idl::system::Health sample;
+  sample.service(service_);
+  sample.host(host_);
+  sample.pid(static_cast<std::uint32_t>(getpid()));
+  switch (report.level) {
+    case HealthLevel::kOk: sample.level(idl::system::HEALTH_OK); break;
+    case HealthLevel::kWarn: sample.level(idl::system::HEALTH_WARN); break;
+    case HealthLevel::kError: sample.level(idl::system::HEALTH_ERROR); break;
+  }
+  sample.status(report.status);
+  sample.rate_hz(report.rate_hz);
+  sample.latency_p50(report.latency_p50);
+  sample.latency_p99(report.latency_p99);
+  sample.errors(report.errors);
+  sample.dropped(report.dropped);
+  for (const auto& [name, value] : report.counters) {
+    idl::system::Counter counter;
+    counter.name(name);
+    counter.value(value);
+    sample.counters().push_back(std::move(counter));
+  }
+  const std::int64_t now = wall_clock_unix_ns();
+  sample.uptime_ns(now - start_unix_ns_);
+  sample.stamp_unix_ns(now);
+  return writer_.write(sample);
+}
+
+}  // namespace ssl::dds

@@ -1,0 +1,49 @@
+// HealthReporter: publishes one service instance's system.health sample (rate, latency, errors, dropped
+// inputs and named counters). Services call publish() about once per second from their own loop.
+//
+//   ssl::dds::HealthReporter health(participant, "simulator");
+//   health.publish({.level = HealthLevel::kOk, .status = "running", .rate_hz = 500,
+//                   .counters = {{"vision_packets_sent", n}}});
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "libs/common/result.h"
+#include "libs/dds/participant.h"
+
+namespace ssl::dds {
+
+enum class HealthLevel { kOk, kWarn, kError };
+
+struct HealthReport {
+  HealthLevel level = HealthLevel::kOk;
+  std::string status;             // short human text
+  double rate_hz = 0;             // main loop or output rate
+  double latency_p50 = 0;         // s
+  double latency_p99 = 0;         // s
+  std::uint64_t errors = 0;
+  std::uint64_t dropped = 0;      // inputs counted and dropped (malformed, stale, ...)
+  std::vector<std::pair<std::string, std::uint64_t>> counters;
+};
+
+class HealthReporter {
+ public:
+  /// `service` is the instance name, e.g. "simulator" or "world_model/blue" (the sample's key).
+  static Result<HealthReporter> create(Participant& participant, std::string service);
+
+  /// Publishes one sample stamped with the wall clock and the reporter's uptime.
+  Status publish(const HealthReport& report);
+
+ private:
+  HealthReporter(Writer<idl::system::Health> writer, std::string service);
+
+  Writer<idl::system::Health> writer_;
+  std::string service_;
+  std::string host_;
+  std::int64_t start_unix_ns_ = 0;
+};
+
+}  // namespace ssl::dds
