@@ -1,0 +1,226 @@
+#include "services/simulator/core/simulator.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ssl::sim {
+namespace {
+
+bool finite(double value) { return std::isfinite(value); }
+
+bool finite(const RobotCommand& command) {
+  return command.velocity.allFinite() &&
+         std::all_of(command.wheel_velocity.begin(), command.wheel_velocity.end(), [](double v) { return finite(v); }) &&
+         finite(command.kick_speed) && finite(command.kick_angle) && finite(command.dribbler_rpm);
+}
+
+std::string describe(RobotKey key) { return std::string(to_string(key.team)) + " " + std::to_string(key.id); }
+
+/// Kickoff formation for one team: the team plays on its half (blue at negative x), spread over the half
+/// outside the centre circle, robot 0 as keeper in front of its goal.
+Vec2 formation_position(const FieldGeometry& field, TeamColor team, std::uint32_t id) {
+  const double side = team == TeamColor::kBlue ? -1.0 : 1.0;
+  if (id == 0) return {side * (field.field_length / 2 - 0.3), 0.0};
+  const std::uint32_t columns = 3;
+  const std::uint32_t index = id - 1;
+  const double x = side * (0.9 + static_cast<double>(index % columns) * (field.field_length / 2 - 1.8) / (columns - 1));
+  const std::uint32_t rows = 6;  // up to 15 field players: 3 columns x 5 rows (+1 spare row)
+  const double row = static_cast<double>(index / columns);
+  const double y = (row - (rows - 2) / 2.0) * (field.field_width - 1.0) / (rows - 1);
+  return {x, y};
+}
+
+}  // namespace
+
+namespace {
+
+/// The vision config with the ball models the physics actually follows, so that what the geometry
+/// packet publishes (SSL_GeometryModels) is true of this simulator's ball.
+VisionConfig with_ball_models(VisionConfig vision, const PhysicsParams& physics) {
+  vision.ball_models.acc_slide = -physics.ball_sliding_deceleration;
+  vision.ball_models.acc_roll = -physics.ball_rolling_deceleration;
+  // A ball kicked without spin rolls once its spin matches its speed: 1 / (1 + I / (m r^2)) of it.
+  vision.ball_models.k_switch = 1.0 / (1.0 + physics.ball_inertia_factor);
+  return vision;
+}
+
+}  // namespace
+
+Simulator::Simulator(const SimulatorOptions& options)
+    : options_(options),
+      physics_(std::make_unique<PhysicsWorld>(options.field, options.physics)),
+      vision_(std::make_unique<VisionModel>(options.field, with_ball_models(options.vision, options.physics),
+                                            options.seed)) {
+  for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
+    const RobotSpec& spec = team == TeamColor::kBlue ? options_.blue_spec : options_.yellow_spec;
+    physics_->set_team_spec(team, spec);
+    vision_->set_robot_spec(team, spec);
+  }
+  place_initial_robots();
+}
+
+void Simulator::place_initial_robots() {
+  const std::uint32_t count = std::min(options_.robots_per_team, kMaxRobotsPerTeam);
+  for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
+    const double facing = team == TeamColor::kBlue ? 0.0 : M_PI;
+    for (std::uint32_t id = 0; id < count; ++id) {
+      physics_->add_robot({team, id}, formation_position(options_.field, team, id), facing);
+    }
+  }
+}
+
+std::vector<SimError> Simulator::apply(const ControlRequest& request) {
+  std::vector<SimError> errors;
+  if (request.field) rebuild(*request.field);
+  for (const auto& [key, spec] : request.robot_specs) {
+    if (!(spec.radius > 0 && spec.height > 0 && spec.mass > 0)) {
+      errors.push_back({"INVALID_ROBOT_SPEC", "robot spec of " + describe(key) + " needs positive radius, height, mass"});
+      continue;
+    }
+    // Specs apply per team: the physics models one robot type per team, as every league team fields.
+    (key.team == TeamColor::kBlue ? options_.blue_spec : options_.yellow_spec) = spec;
+    physics_->set_team_spec(key.team, spec);
+    vision_->set_robot_spec(key.team, spec);
+  }
+  if (request.realism) vision_->set_realism(*request.realism);
+  for (const auto& teleport : request.robots) {
+    if (auto error = apply_robot(teleport)) errors.push_back(*error);
+  }
+  if (request.ball) {
+    if (auto error = apply_ball(*request.ball)) errors.push_back(*error);
+  }
+  if (request.simulation_speed) {
+    if (finite(*request.simulation_speed) && *request.simulation_speed > 0) {
+      simulation_speed_ = *request.simulation_speed;
+    } else {
+      errors.push_back({"INVALID_SIMULATION_SPEED", "simulation_speed must be a positive number"});
+    }
+  }
+  return errors;
+}
+
+std::optional<SimError> Simulator::apply_ball(const BallTeleport& teleport) {
+  if (teleport.by_force) return SimError{"UNSUPPORTED_BY_FORCE", "teleport by force is not supported; use a plain teleport"};
+  for (const auto& value : {teleport.x, teleport.y, teleport.z, teleport.vx, teleport.vy, teleport.vz}) {
+    if (value && !finite(*value)) return SimError{"INVALID_VALUE", "ball teleport has a non-finite value"};
+  }
+  const BallState current = physics_->snapshot().ball;
+  const Vec3 position(teleport.x.value_or(current.position.x()), teleport.y.value_or(current.position.y()),
+                      teleport.z.value_or(options_.physics.ball_radius));
+  const Vec3 velocity(teleport.vx.value_or(0), teleport.vy.value_or(0), teleport.vz.value_or(0));
+  physics_->teleport_ball(position, velocity, teleport.roll ? BallSpin::kRolling : BallSpin::kNone);
+  if (teleport.teleport_safely) push_robots_away_from_ball();
+  return std::nullopt;
+}
+
+void Simulator::push_robots_away_from_ball() {
+  const WorldSnapshot world = physics_->snapshot();
+  const Vec2 ball = world.ball.position.head<2>();
+  for (const RobotState& robot : world.robots) {
+    const RobotSpec& spec = robot.key.team == TeamColor::kBlue ? options_.blue_spec : options_.yellow_spec;
+    const double clearance = spec.radius + options_.physics.ball_radius + 0.05;
+    const Vec2 offset = robot.position - ball;
+    if (offset.norm() >= clearance) continue;
+    const Vec2 away = offset.norm() > 1e-9 ? offset.normalized() : Vec2(robot.key.team == TeamColor::kBlue ? -1 : 1, 0);
+    physics_->teleport_robot(robot.key, ball + away * clearance, robot.orientation, Vec2::Zero(), 0);
+  }
+}
+
+std::optional<SimError> Simulator::apply_robot(const RobotTeleport& teleport) {
+  const RobotKey key = teleport.key;
+  if (key.id >= kMaxRobotsPerTeam) {
+    return SimError{"INVALID_ROBOT_ID", "robot id " + std::to_string(key.id) + " is outside 0..15"};
+  }
+  if (teleport.by_force) return SimError{"UNSUPPORTED_BY_FORCE", "teleport by force is not supported for " + describe(key)};
+  for (const auto& value : {teleport.x, teleport.y, teleport.orientation, teleport.vx, teleport.vy, teleport.angular}) {
+    if (value && !finite(*value)) return SimError{"INVALID_VALUE", "teleport of " + describe(key) + " has a non-finite value"};
+  }
+  if (teleport.present && !*teleport.present) {
+    physics_->remove_robot(key);
+    return std::nullopt;
+  }
+  auto find = [&]() -> std::optional<RobotState> {
+    for (const RobotState& robot : physics_->snapshot().robots) {
+      if (robot.key == key) return robot;
+    }
+    return std::nullopt;
+  };
+  std::optional<RobotState> current = find();
+  if (!current) {
+    if (!teleport.present) {
+      return SimError{"UNKNOWN_ROBOT", describe(key) + " is not on the field; set present=true to add it"};
+    }
+    if (!teleport.x || !teleport.y) {
+      return SimError{"MISSING_POSITION", "adding " + describe(key) + " needs x and y"};
+    }
+    physics_->add_robot(key, {*teleport.x, *teleport.y}, teleport.orientation.value_or(0));
+    current = find();
+  }
+  const Vec2 position(teleport.x.value_or(current->position.x()), teleport.y.value_or(current->position.y()));
+  physics_->teleport_robot(key, position, teleport.orientation.value_or(current->orientation),
+                           Vec2(teleport.vx.value_or(0), teleport.vy.value_or(0)), teleport.angular.value_or(0));
+  return std::nullopt;
+}
+
+std::vector<SimError> Simulator::set_commands(TeamColor team, const std::vector<RobotCommandFor>& commands) {
+  std::vector<SimError> errors;
+  for (const auto& [id, command] : commands) {
+    const RobotKey key{team, id};
+    if (!finite(command)) {
+      errors.push_back({"INVALID_VALUE", "command for " + describe(key) + " has a non-finite value; ignored"});
+      continue;
+    }
+    if (!physics_->set_command(key, command)) {
+      errors.push_back({"UNKNOWN_ROBOT", describe(key) + " is not on the field; command ignored"});
+    }
+  }
+  return errors;
+}
+
+StepOutput Simulator::step(time::Duration dt) {
+  StepOutput output;
+  if (dt <= time::Duration::zero()) return output;
+  // Advance in physics sub-steps so that each camera captures the world at its own frame time, however
+  // long the requested step is (a lockstep client may ask for 100 ms at once).
+  const auto sub_step =
+      std::chrono::duration_cast<time::Duration>(std::chrono::duration<double>(physics_->params().step));
+  for (time::Duration remaining = dt; remaining > time::Duration::zero(); remaining -= sub_step) {
+    physics_->step(std::min(remaining, sub_step));
+    if (physics_->time() + time_offset_ < vision_->next_event_time()) continue;
+    VisionOutput vision = vision_->update(snapshot());
+    output.frames.insert(output.frames.end(), std::make_move_iterator(vision.frames.begin()),
+                         std::make_move_iterator(vision.frames.end()));
+    output.geometry_due |= vision.geometry_due;
+  }
+  return output;
+}
+
+std::vector<RobotFeedback> Simulator::feedback(TeamColor team) const {
+  std::vector<RobotFeedback> feedback;
+  for (const RobotState& robot : physics_->snapshot().robots) {
+    if (robot.key.team == team) feedback.push_back({robot.key.id, robot.ball_contact});
+  }
+  return feedback;
+}
+
+WorldSnapshot Simulator::snapshot() const {
+  WorldSnapshot world = physics_->snapshot();
+  world.time += time_offset_;
+  return world;
+}
+
+void Simulator::rebuild(const FieldGeometry& field) {
+  const WorldSnapshot world = snapshot();
+  time_offset_ = world.time.since_epoch();  // the new physics world starts at 0; simulated time goes on
+  options_.field = field;
+  physics_ = std::make_unique<PhysicsWorld>(field, options_.physics);
+  physics_->set_team_spec(TeamColor::kBlue, options_.blue_spec);
+  physics_->set_team_spec(TeamColor::kYellow, options_.yellow_spec);
+  for (const RobotState& robot : world.robots) {
+    physics_->add_robot(robot.key, robot.position, robot.orientation);
+  }
+  physics_->teleport_ball(world.ball.position, world.ball.velocity);
+  vision_->set_field(field);
+}
+
+}  // namespace ssl::sim

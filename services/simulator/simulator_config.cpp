@@ -1,0 +1,147 @@
+#include "services/simulator/simulator_config.h"
+
+#include "libs/config/config.h"
+
+namespace ssl::sim {
+namespace {
+
+using config::field;
+using config::Fields;
+using config::nested;
+
+Fields<NetworkConfig> network_fields() {
+  return {
+      field("bind_address", &NetworkConfig::bind_address).doc("local address the protocol ports listen on"),
+      field("interface", &NetworkConfig::interface_address).doc("multicast interface address of the vision output"),
+      field("vision_group", &NetworkConfig::vision_group).doc("SSL-Vision multicast group"),
+      field("vision_port", &NetworkConfig::vision_port).range(1, 65535),
+      field("control_port", &NetworkConfig::control_port).range(1, 65535).doc("simulation control (SimulatorCommand)"),
+      field("blue_port", &NetworkConfig::blue_port).range(1, 65535).doc("blue RobotControl"),
+      field("yellow_port", &NetworkConfig::yellow_port).range(1, 65535).doc("yellow RobotControl"),
+      field("grsim_port", &NetworkConfig::grsim_port).range(1, 65535).doc("grSim legacy grSim_Packet"),
+  };
+}
+
+Fields<CameraConfig> camera_fields() {
+  return {
+      field("count", &CameraConfig::count).range(1, 8).doc("1, 2, 4, 6 or 8 cameras tiling the field"),
+      field("frame_rate", &CameraConfig::frame_rate).unit("Hz").range(1, 1000),
+      field("overlap", &CameraConfig::overlap).unit("m").range(0, 3).doc("each camera sees this far beyond its tile"),
+      field("height", &CameraConfig::height).unit("m").range(0.5, 20),
+      field("geometry_every_frames", &CameraConfig::geometry_every_frames).range(0, 100000)
+          .doc("a geometry packet after this many frames (0: only at start)"),
+  };
+}
+
+Fields<TeamRobotConfig> robot_fields() {
+  return {
+      field("radius", &TeamRobotConfig::radius).unit("m").range(0.05, 0.2),
+      field("height", &TeamRobotConfig::height).unit("m").range(0.05, 0.3),
+      field("mass", &TeamRobotConfig::mass).unit("kg").range(0.1, 10),
+      field("center_to_dribbler", &TeamRobotConfig::center_to_dribbler).unit("m").range(0.03, 0.2),
+      field("max_linear_kick_speed", &TeamRobotConfig::max_linear_kick_speed).unit("m/s").range(0, 15),
+      field("max_chip_kick_speed", &TeamRobotConfig::max_chip_kick_speed).unit("m/s").range(0, 15),
+      field("acc_speedup_absolute_max", &TeamRobotConfig::acc_speedup_absolute_max).unit("m/s^2").range(0.1, 50),
+      field("acc_speedup_angular_max", &TeamRobotConfig::acc_speedup_angular_max).unit("rad/s^2").range(0.1, 500),
+      field("acc_brake_absolute_max", &TeamRobotConfig::acc_brake_absolute_max).unit("m/s^2").range(0.1, 50),
+      field("acc_brake_angular_max", &TeamRobotConfig::acc_brake_angular_max).unit("rad/s^2").range(0.1, 500),
+      field("vel_absolute_max", &TeamRobotConfig::vel_absolute_max).unit("m/s").range(0.1, 10),
+      field("vel_angular_max", &TeamRobotConfig::vel_angular_max).unit("rad/s").range(0.1, 100),
+  };
+}
+
+Fields<SimulatorConfig> simulator_fields() {
+  return {
+      field("division", &SimulatorConfig::division).values({{"a", Division::kA}, {"b", Division::kB}}),
+      field("robots_per_team", &SimulatorConfig::robots_per_team).range(0, 16),
+      field("seed", &SimulatorConfig::seed).doc("every random draw (vision noise) derives from it"),
+      field("mode", &SimulatorConfig::mode)
+          .values({{"realtime", Mode::kRealtime}, {"fast", Mode::kFast}, {"lockstep", Mode::kLockstep}}),
+      field("realism", &SimulatorConfig::realism)
+          .values({{"none", RealismProfile::kNone},
+                   {"realistic", RealismProfile::kRealistic},
+                   {"competition", RealismProfile::kCompetition}}),
+      field("loop_rate", &SimulatorConfig::loop_rate).unit("Hz").range(10, 5000)
+          .doc("iterations per second of the real-time loop"),
+      field("fast_step", &SimulatorConfig::fast_step).unit("s").range(0.0001, 0.1)
+          .doc("simulated time per iteration in fast mode"),
+      nested("network", &SimulatorConfig::network, network_fields()),
+      nested("cameras", &SimulatorConfig::cameras, camera_fields()),
+      nested("blue", &SimulatorConfig::blue, robot_fields()),
+      nested("yellow", &SimulatorConfig::yellow, robot_fields()),
+  };
+}
+
+RobotSpec robot_spec(const TeamRobotConfig& team) {
+  RobotSpec spec;
+  spec.radius = team.radius;
+  spec.height = team.height;
+  spec.mass = team.mass;
+  spec.center_to_dribbler = team.center_to_dribbler;
+  spec.max_linear_kick_speed = team.max_linear_kick_speed;
+  spec.max_chip_kick_speed = team.max_chip_kick_speed;
+  spec.limits.acc_speedup_absolute_max = team.acc_speedup_absolute_max;
+  spec.limits.acc_speedup_angular_max = team.acc_speedup_angular_max;
+  spec.limits.acc_brake_absolute_max = team.acc_brake_absolute_max;
+  spec.limits.acc_brake_angular_max = team.acc_brake_angular_max;
+  spec.limits.vel_absolute_max = team.vel_absolute_max;
+  spec.limits.vel_angular_max = team.vel_angular_max;
+  return spec;
+}
+
+RealismConfig realism_of(RealismProfile profile) {
+  switch (profile) {
+    case RealismProfile::kNone: return RealismConfig::none();
+    case RealismProfile::kRealistic: return RealismConfig::realistic();
+    case RealismProfile::kCompetition: return RealismConfig::competition();
+  }
+  return RealismConfig::none();
+}
+
+}  // namespace
+
+Result<SimulatorConfig> load_simulator_config(const std::string& path, const std::vector<std::string>& overrides) {
+  auto loaded = config::load_file(path, simulator_fields(), overrides);
+  if (!loaded) return loaded;
+  // The camera grid supports these counts only (VisionConfig::validate would throw later otherwise).
+  const int count = loaded->cameras.count;
+  if (count != 1 && count != 2 && count != 4 && count != 6 && count != 8) {
+    return Error{path + ": key 'cameras.count': " + std::to_string(count) + " is not one of 1, 2, 4, 6, 8"};
+  }
+  return loaded;
+}
+
+std::string simulator_config_yaml(const SimulatorConfig& config) { return config::to_yaml(config, simulator_fields()); }
+
+SimulatorOptions simulator_options(const SimulatorConfig& config) {
+  SimulatorOptions options;
+  options.field = config.division == Division::kA ? FieldGeometry::division_a() : FieldGeometry::division_b();
+  options.vision.camera_count = config.cameras.count;
+  options.vision.frame_rate = config.cameras.frame_rate;
+  options.vision.camera_overlap = config.cameras.overlap;
+  options.vision.camera_height = config.cameras.height;
+  options.vision.geometry_every_frames = static_cast<std::uint32_t>(config.cameras.geometry_every_frames);
+  options.vision.realism = realism_of(config.realism);
+  options.blue_spec = robot_spec(config.blue);
+  options.yellow_spec = robot_spec(config.yellow);
+  options.vision.max_robot_radius = std::max(config.blue.radius, config.yellow.radius);
+  options.robots_per_team = static_cast<std::uint32_t>(config.robots_per_team);
+  options.seed = config.seed;
+  return options;
+}
+
+ServerOptions server_options(const SimulatorConfig& config) {
+  ServerOptions options;
+  options.bind_address = config.network.bind_address;
+  options.interface_address = config.network.interface_address;
+  options.vision_group = config.network.vision_group;
+  options.vision_port = config.network.vision_port;
+  options.control_port = config.network.control_port;
+  options.blue_port = config.network.blue_port;
+  options.yellow_port = config.network.yellow_port;
+  options.grsim_port = config.network.grsim_port;
+  options.lockstep = config.mode == Mode::kLockstep;
+  return options;
+}
+
+}  // namespace ssl::sim
