@@ -191,6 +191,30 @@ TEST(SimulatorProtocolTest, GrsimReplacementMovesARobot) {
     }, seconds(1));
   }
   EXPECT_TRUE(seen);
+
+  // A grSim client gets its robots' status on port 30012 (yellow) of its own address.
+  auto status_socket = net::UdpSocket::open("127.0.0.1", 30012);
+  ASSERT_TRUE(status_socket) << status_socket.error().message;
+  grSim_Packet commands;
+  commands.mutable_commands()->set_timestamp(0);
+  commands.mutable_commands()->set_isteamyellow(true);
+  auto* command = commands.mutable_commands()->add_robot_commands();
+  command->set_id(0);
+  command->set_kickspeedx(0);
+  command->set_kickspeedz(0);
+  command->set_veltangent(0);
+  command->set_velnormal(0);
+  command->set_velangular(0);
+  command->set_spinner(false);
+  command->set_wheelsspeed(false);
+  ASSERT_TRUE(client->send_to(local(ports.grsim), league::byte_span(commands.SerializeAsString())).ok());
+  std::array<std::uint8_t, 65536> buffer;
+  const auto received = status_socket->receive(buffer, seconds(10));
+  ASSERT_TRUE(received.ok());
+  auto status = league::decode_grsim_robots_status(std::span(buffer).first(received.size));
+  ASSERT_TRUE(status) << status.error().message;
+  EXPECT_EQ(status->robots_status_size(), 2);  // both yellow robots on the field
+
   simulator.signal(SIGTERM);
   EXPECT_EQ(simulator.wait(seconds(10)), 0);
 }

@@ -250,6 +250,18 @@ GrsimInput grsim_from_proto(const grSim_Packet& packet, std::vector<SimError>& e
   return input;
 }
 
+Robots_Status grsim_status_to_proto(const std::vector<RobotFeedback>& feedback) {
+  Robots_Status status;
+  for (const RobotFeedback& robot : feedback) {
+    auto* wire = status.add_robots_status();
+    wire->set_robot_id(static_cast<std::int32_t>(robot.id));
+    wire->set_infrared(robot.dribbler_ball_contact);
+    wire->set_flat_kick(false);
+    wire->set_chip_kick(false);
+  }
+  return status;
+}
+
 RobotControlResponse response_to_proto(const std::vector<RobotFeedback>& feedback, const std::vector<SimError>& errors) {
   RobotControlResponse response;
   for (const SimError& error : errors) {

@@ -9,6 +9,7 @@
 
 #include "libs/time/time.h"
 #include "proto/grsim_packet.pb.h"
+#include "proto/grsim_robotstatus.pb.h"
 #include "proto/ssl_simulation_control.pb.h"
 #include "proto/ssl_simulation_robot_control.pb.h"
 #include "proto/ssl_simulation_robot_feedback.pb.h"
@@ -32,6 +33,9 @@ struct GrsimInput {
   ControlRequest control;
 };
 GrsimInput grsim_from_proto(const grSim_Packet& packet, std::vector<SimError>& errors);
+
+/// grSim's robot status (infrared = ball at the kicker), sent back for grSim clients.
+Robots_Status grsim_status_to_proto(const std::vector<RobotFeedback>& feedback);
 
 RobotControlResponse response_to_proto(const std::vector<RobotFeedback>& feedback, const std::vector<SimError>& errors);
 SimulatorResponse response_to_proto(const std::vector<SimError>& errors);

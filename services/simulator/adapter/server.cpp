@@ -11,6 +11,8 @@ namespace {
 
 constexpr std::size_t kReceiveBufferBytes = 65536;  // never truncates a UDP datagram
 constexpr auto kReceivePoll = std::chrono::milliseconds(200);
+constexpr std::uint16_t kGrsimBlueStatusPort = 30011;
+constexpr std::uint16_t kGrsimYellowStatusPort = 30012;
 
 std::vector<SimError> decode_error(const Error& error) { return {{"DECODE_ERROR", error.message}}; }
 
@@ -170,6 +172,11 @@ void SimulatorServer::handle(const Datagram& datagram, Simulator& sim, time::Dur
         errors.insert(errors.end(), applied.begin(), applied.end());
         applied = sim.set_commands(input.team, input.commands);
         errors.insert(errors.end(), applied.begin(), applied.end());
+        if (packet->has_commands()) {
+          // As grSim does: the robots' status goes to the sender's address, port 30011 (blue) / 30012 (yellow).
+          const std::uint16_t status_port = input.team == TeamColor::kBlue ? kGrsimBlueStatusPort : kGrsimYellowStatusPort;
+          answer(port, net::Endpoint(datagram.sender.address(), status_port), grsim_status_to_proto(sim.feedback(input.team)));
+        }
       }
       std::lock_guard lock(counters_mutex_);
       ++counters_.grsim_packets;
