@@ -33,20 +33,27 @@ Fields<CameraConfig> camera_fields() {
   };
 }
 
-Fields<TeamRobotConfig> robot_fields() {
+Fields<RobotLimits> limit_fields() {
   return {
-      field("radius", &TeamRobotConfig::radius).unit("m").range(0.05, 0.2),
-      field("height", &TeamRobotConfig::height).unit("m").range(0.05, 0.3),
-      field("mass", &TeamRobotConfig::mass).unit("kg").range(0.1, 10),
-      field("center_to_dribbler", &TeamRobotConfig::center_to_dribbler).unit("m").range(0.03, 0.2),
-      field("max_linear_kick_speed", &TeamRobotConfig::max_linear_kick_speed).unit("m/s").range(0, 15),
-      field("max_chip_kick_speed", &TeamRobotConfig::max_chip_kick_speed).unit("m/s").range(0, 15),
-      field("acc_speedup_absolute_max", &TeamRobotConfig::acc_speedup_absolute_max).unit("m/s^2").range(0.1, 50),
-      field("acc_speedup_angular_max", &TeamRobotConfig::acc_speedup_angular_max).unit("rad/s^2").range(0.1, 500),
-      field("acc_brake_absolute_max", &TeamRobotConfig::acc_brake_absolute_max).unit("m/s^2").range(0.1, 50),
-      field("acc_brake_angular_max", &TeamRobotConfig::acc_brake_angular_max).unit("rad/s^2").range(0.1, 500),
-      field("vel_absolute_max", &TeamRobotConfig::vel_absolute_max).unit("m/s").range(0.1, 10),
-      field("vel_angular_max", &TeamRobotConfig::vel_angular_max).unit("rad/s").range(0.1, 100),
+      field("acc_speedup_absolute_max", &RobotLimits::acc_speedup_absolute_max).unit("m/s^2").range(0.1, 50),
+      field("acc_speedup_angular_max", &RobotLimits::acc_speedup_angular_max).unit("rad/s^2").range(0.1, 500),
+      field("acc_brake_absolute_max", &RobotLimits::acc_brake_absolute_max).unit("m/s^2").range(0.1, 50),
+      field("acc_brake_angular_max", &RobotLimits::acc_brake_angular_max).unit("rad/s^2").range(0.1, 500),
+      field("vel_absolute_max", &RobotLimits::vel_absolute_max).unit("m/s").range(0.1, 10),
+      field("vel_angular_max", &RobotLimits::vel_angular_max).unit("rad/s").range(0.1, 100),
+  };
+}
+
+Fields<RobotSpec> robot_fields() {
+  return {
+      field("radius", &RobotSpec::radius).unit("m").range(0.05, 0.2),
+      field("height", &RobotSpec::height).unit("m").range(0.05, 0.3),
+      field("mass", &RobotSpec::mass).unit("kg").range(0.1, 10),
+      field("center_to_dribbler", &RobotSpec::center_to_dribbler).unit("m").range(0.03, 0.2),
+      field("dribbler_width", &RobotSpec::dribbler_width).unit("m").range(0.01, 0.2),
+      field("max_linear_kick_speed", &RobotSpec::max_linear_kick_speed).unit("m/s").range(0, 15),
+      field("max_chip_kick_speed", &RobotSpec::max_chip_kick_speed).unit("m/s").range(0, 15),
+      nested("limits", &RobotSpec::limits, limit_fields()),
   };
 }
 
@@ -70,23 +77,6 @@ Fields<SimulatorConfig> simulator_fields() {
       nested("blue", &SimulatorConfig::blue, robot_fields()),
       nested("yellow", &SimulatorConfig::yellow, robot_fields()),
   };
-}
-
-RobotSpec robot_spec(const TeamRobotConfig& team) {
-  RobotSpec spec;
-  spec.radius = team.radius;
-  spec.height = team.height;
-  spec.mass = team.mass;
-  spec.center_to_dribbler = team.center_to_dribbler;
-  spec.max_linear_kick_speed = team.max_linear_kick_speed;
-  spec.max_chip_kick_speed = team.max_chip_kick_speed;
-  spec.limits.acc_speedup_absolute_max = team.acc_speedup_absolute_max;
-  spec.limits.acc_speedup_angular_max = team.acc_speedup_angular_max;
-  spec.limits.acc_brake_absolute_max = team.acc_brake_absolute_max;
-  spec.limits.acc_brake_angular_max = team.acc_brake_angular_max;
-  spec.limits.vel_absolute_max = team.vel_absolute_max;
-  spec.limits.vel_angular_max = team.vel_angular_max;
-  return spec;
 }
 
 RealismConfig realism_of(RealismProfile profile) {
@@ -122,8 +112,8 @@ SimulatorOptions simulator_options(const SimulatorConfig& config) {
   options.vision.camera_height = config.cameras.height;
   options.vision.geometry_every_frames = static_cast<std::uint32_t>(config.cameras.geometry_every_frames);
   options.vision.realism = realism_of(config.realism);
-  options.blue_spec = robot_spec(config.blue);
-  options.yellow_spec = robot_spec(config.yellow);
+  options.blue_spec = config.blue;
+  options.yellow_spec = config.yellow;
   options.vision.max_robot_radius = std::max(config.blue.radius, config.yellow.radius);
   options.robots_per_team = static_cast<std::uint32_t>(config.robots_per_team);
   options.seed = config.seed;

@@ -35,21 +35,6 @@ struct CameraConfig {
   int geometry_every_frames = 0;
 };
 
-struct TeamRobotConfig {
-  double radius = 0;               // m
-  double height = 0;               // m
-  double mass = 0;                 // kg
-  double center_to_dribbler = 0;   // m
-  double max_linear_kick_speed = 0;  // m/s
-  double max_chip_kick_speed = 0;    // m/s
-  double acc_speedup_absolute_max = 0;  // m/s^2
-  double acc_speedup_angular_max = 0;   // rad/s^2
-  double acc_brake_absolute_max = 0;    // m/s^2
-  double acc_brake_angular_max = 0;     // rad/s^2
-  double vel_absolute_max = 0;          // m/s
-  double vel_angular_max = 0;           // rad/s
-};
-
 struct SimulatorConfig {
   Division division = Division::kA;
   int robots_per_team = 0;
@@ -60,8 +45,8 @@ struct SimulatorConfig {
   double fast_step = 0;            // s of simulated time per iteration in fast mode
   NetworkConfig network;
   CameraConfig cameras;
-  TeamRobotConfig blue;
-  TeamRobotConfig yellow;
+  RobotSpec blue;                  // robot specs per team (wheel angles keep their defaults)
+  RobotSpec yellow;
 };
 
 /// Loads and validates a config file; `overrides` are "key.path=value" strings (from flags).
