@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -67,5 +68,68 @@ int estop(bool engage, const std::string& reason, const DdsOptions& dds, double 
 /// `sslctl health`: listens to system.health for `listen_s` seconds and prints one line per service.
 int health(const DdsOptions& dds, double listen_s, bool json, ShutdownSignal& shutdown, std::ostream& out,
            std::ostream& err);
+
+// ---------------------------------------------------------------------------------------------------
+// SSL log files (the league's format, libs/league/log_file.h): record, replay, info.
+
+/// Multicast ports of the league's streams. Vision, legacy vision and tracker use group 224.5.23.2,
+/// the referee 224.5.23.1.
+struct LogStreamPorts {
+  int vision = 10006;         // SSL_WrapperPacket, logged as SSL_VISION_2014
+  int legacy_vision = 10005;  // legacy SSL_WrapperPacket, SSL_VISION_2010
+  int referee = 10003;        // Referee, SSL_REFBOX_2013
+  int tracker = 10010;        // TrackerWrapperPacket, SSL_VISION_TRACKER_2020
+};
+
+/// Records per stream of a recording or a replay.
+struct LogStreamCounts {
+  std::uint64_t vision = 0;
+  std::uint64_t legacy_vision = 0;
+  std::uint64_t referee = 0;
+  std::uint64_t tracker = 0;
+  std::uint64_t bytes = 0;        // payload bytes of those records
+  std::uint64_t undecodable = 0;  // payloads that do not decode as their type (still recorded / sent)
+
+  std::uint64_t total() const noexcept { return vision + legacy_vision + referee + tracker; }
+};
+
+struct LogRecordOptions {
+  std::string file;                              // ".gz" suffix: gzip; otherwise uncompressed with index
+  LogStreamPorts ports;
+  std::string interface_address = "127.0.0.1";  // the NIC on the vision network at a match
+  double duration_s = 0;                         // stop after this long; 0 = until interrupted
+  bool legacy = true;                            // also record the legacy vision stream
+  double progress_period_s = 1.0;                // progress line on `err` this often; 0 = never
+  /// Called on the calling thread once every group is joined and the file is open (tests).
+  std::function<void()> on_ready;
+  /// Called after each record is written, from a receiving thread, with a lock held (tests).
+  std::function<void(const LogStreamCounts&)> on_record;
+};
+
+/// `sslctl log record FILE`: writes every datagram of the vision, legacy vision, referee and tracker
+/// streams, as received, into FILE with its receive time. Prints "recording ..." on `out` once the groups
+/// are joined, progress on `err`, a summary on `out` after Ctrl-C / --duration. 1 on socket or I/O errors.
+int log_record(const LogRecordOptions& options, ShutdownSignal& shutdown, std::ostream& out,
+               std::ostream& err);
+
+struct LogReplayOptions {
+  std::string file;
+  LogStreamPorts ports;
+  std::string interface_address = "127.0.0.1";
+  double speed = 1.0;              // > 0; 2 = twice as fast as recorded
+  bool loop = false;               // start over at the end until interrupted
+  double progress_period_s = 1.0;  // progress line on `err` this often; 0 = never
+};
+
+/// `sslctl log replay FILE`: sends every vision, legacy vision, referee and tracker record to its group
+/// and port with the recorded timing divided by `speed`; other record types are skipped and counted.
+/// A damaged file is replayed up to the damage, then the error (with its offset) is printed and 1 returned.
+int log_replay(const LogReplayOptions& options, ShutdownSignal& shutdown, std::ostream& out,
+               std::ostream& err);
+
+/// `sslctl log info FILE`: records per type, first/last time stamp and duration, cameras and frames per
+/// camera, referee commands and stages, index, file size; `json` prints one JSON object. On a damaged
+/// file it prints what was readable, then the error (with its offset) on `err`, and returns 1.
+int log_info(const std::string& file, bool json, std::ostream& out, std::ostream& err);
 
 }  // namespace ssl::sslctl

@@ -2,6 +2,7 @@
 //   sslctl topic list | echo TOPIC | hz TOPIC | pub TOPIC JSON
 //   sslctl estop on|off
 //   sslctl health
+//   sslctl log record FILE | replay FILE | info FILE     (the league's SSL log files)
 // Every DDS command takes --domain D (and --team blue|yellow for team-scoped topics).
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -16,6 +17,26 @@ void add_dds_flags(CLI::App& command, ssl::sslctl::DdsOptions& options, std::str
       ->check(CLI::IsMember({"blue", "yellow"}));
 }
 
+/// The multicast ports and interface shared by `log record` and `log replay`.
+void add_log_stream_flags(CLI::App& command, ssl::sslctl::LogStreamPorts& ports,
+                          std::string& interface_address) {
+  const auto port_range = CLI::Range(1, 65535);
+  command.add_option("--vision-port", ports.vision, "SSL-Vision port, group 224.5.23.2")
+      ->check(port_range)
+      ->capture_default_str();
+  command.add_option("--legacy-vision-port", ports.legacy_vision, "legacy SSL-Vision port, group 224.5.23.2")
+      ->check(port_range)
+      ->capture_default_str();
+  command.add_option("--referee-port", ports.referee, "game controller port, group 224.5.23.1")
+      ->check(port_range)
+      ->capture_default_str();
+  command.add_option("--tracker-port", ports.tracker, "tracked vision port, group 224.5.23.2")
+      ->check(port_range)
+      ->capture_default_str();
+  command.add_option("--interface", interface_address, "IPv4 address of the network card to use")
+      ->capture_default_str();
+}
+
 void apply_team(ssl::sslctl::DdsOptions& options, const std::string& team) {
   if (!team.empty()) options.team = ssl::parse_team(team);
 }
@@ -24,7 +45,7 @@ void apply_team(ssl::sslctl::DdsOptions& options, const std::string& team) {
 
 int main(int argc, char** argv) {
   ssl::ShutdownSignal shutdown;  // before any DDS thread exists
-  CLI::App app{"sslctl: inspect and drive the SSL stack (topics, e-stop, health)", "sslctl"};
+  CLI::App app{"sslctl: inspect and drive the SSL stack (topics, e-stop, health, log files)", "sslctl"};
   app.require_subcommand(1);
 
   auto* topic = app.add_subcommand("topic", "DDS topics of the stack");
@@ -89,6 +110,35 @@ int main(int argc, char** argv) {
   health_cmd->add_flag("--json", health_json, "one JSON object per service");
   add_dds_flags(*health_cmd, health_dds, health_team);
 
+  auto* log = app.add_subcommand("log", "SSL log files in the league's format (.log, .log.gz)");
+  log->require_subcommand(1);
+
+  ssl::sslctl::LogRecordOptions record;
+  bool record_no_legacy = false;
+  auto* record_cmd = log->add_subcommand(
+      "record", "record vision, legacy vision, referee and tracker multicast to FILE until Ctrl-C");
+  record_cmd->add_option("file", record.file, "log file to write; a .gz suffix compresses it")->required();
+  add_log_stream_flags(*record_cmd, record.ports, record.interface_address);
+  record_cmd->add_option("--duration", record.duration_s, "stop after S seconds (0: run until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber);
+  record_cmd->add_flag("--no-legacy", record_no_legacy, "do not record the legacy vision stream");
+
+  ssl::sslctl::LogReplayOptions replay;
+  auto* replay_cmd =
+      log->add_subcommand("replay", "send a log's records to their multicast groups, timed as recorded");
+  replay_cmd->add_option("file", replay.file, "log file to replay (.log or .log.gz)")->required();
+  replay_cmd->add_option("--speed", replay.speed, "time factor (2: twice as fast)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  replay_cmd->add_flag("--loop", replay.loop, "start over at the end until Ctrl-C");
+  add_log_stream_flags(*replay_cmd, replay.ports, replay.interface_address);
+
+  std::string info_file;
+  bool info_json = false;
+  auto* info_cmd = log->add_subcommand("info", "counts, duration, cameras and referee commands of a log");
+  info_cmd->add_option("file", info_file, "log file (.log or .log.gz)")->required();
+  info_cmd->add_flag("--json", info_json, "one JSON object");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -115,5 +165,11 @@ int main(int argc, char** argv) {
   if (health_cmd->parsed()) {
     return ssl::sslctl::health(health_dds, health_listen, health_json, shutdown, std::cout, std::cerr);
   }
+  if (record_cmd->parsed()) {
+    record.legacy = !record_no_legacy;
+    return ssl::sslctl::log_record(record, shutdown, std::cout, std::cerr);
+  }
+  if (replay_cmd->parsed()) return ssl::sslctl::log_replay(replay, shutdown, std::cout, std::cerr);
+  if (info_cmd->parsed()) return ssl::sslctl::log_info(info_file, info_json, std::cout, std::cerr);
   return 2;
 }
