@@ -19,7 +19,8 @@ struct Flags {
   std::string log_level = "info";
   bool print_config = false;
   bool no_dds = false;
-  std::vector<std::string> overrides;
+  std::vector<std::string> overrides;      // from the named flags, in order
+  std::vector<std::string> set_overrides;  // from --set (CLI11 assigns this vector as a whole)
 };
 
 void add_override(CLI::App& app, const std::string& flag, const std::string& key, const std::string& help,
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
   add_override(app, "--blue-port", "network.blue_port", "blue robot control port", flags.overrides);
   add_override(app, "--yellow-port", "network.yellow_port", "yellow robot control port", flags.overrides);
   add_override(app, "--grsim-port", "network.grsim_port", "grSim legacy command port", flags.overrides);
-  app.add_option("--set", flags.overrides, "override any config key: --set cameras.count=8")->take_all();
+  app.add_option("--set", flags.set_overrides, "override any config key: --set cameras.count=8")->take_all();
   app.add_flag("--print-config", flags.print_config, "print the effective config and exit");
   app.add_flag("--no-dds", flags.no_dds, "do not publish system.health over DDS");
   try {
@@ -63,6 +64,7 @@ int main(int argc, char** argv) {
   auto logger = spdlog::default_logger()->clone("simulator");
   logger->set_level(spdlog::level::from_str(flags.log_level));
 
+  flags.overrides.insert(flags.overrides.end(), flags.set_overrides.begin(), flags.set_overrides.end());
   if (flags.config_file.empty()) {
     auto found = ssl::find_deploy_file("config/simulator.yaml");
     if (!found) {
