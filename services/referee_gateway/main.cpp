@@ -1,0 +1,127 @@
+// referee_gateway: listens to the SSL Game Controller's Referee multicast (224.5.23.1:10003) and
+// publishes referee.state (the whole state, transient local) and referee.event (each game event once)
+// on DDS, with system.health once per second. Flags override keys of deploy/config/referee_gateway.yaml.
+//
+// Exit codes: 0 after SIGINT/SIGTERM; 1 when the config, the socket or DDS cannot be set up; 2 for a usage
+// the gateway cannot serve (--source builtin, which is not available yet; --profile without it).
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "libs/common/deploy_files.h"
+#include "libs/common/shutdown.h"
+#include "libs/dds/participant.h"
+#include "libs/time/clock.h"
+#include "services/referee_gateway/adapter/service.h"
+#include "services/referee_gateway/referee_gateway_config.h"
+
+namespace {
+
+struct Flags {
+  std::string config_file;
+  int domain = 0;
+  std::string log_level = "info";
+  std::string profile;
+  bool print_config = false;
+  std::vector<std::string> overrides;  // from the named flags, in command-line order
+  std::vector<std::string> set;        // from --set; CLI11 assigns this vector whole, so it is kept apart
+};
+
+void add_override(CLI::App& app, const std::string& flag, const std::string& key, const std::string& help,
+                  std::vector<std::string>& overrides) {
+  app.add_option_function<std::string>(
+      flag, [&overrides, key](const std::string& value) { overrides.push_back(key + "=" + value); }, help);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ssl::ShutdownSignal shutdown;  // before any thread exists
+  Flags flags;
+  CLI::App app{
+      "referee_gateway: SSL Game Controller referee packets -> referee.state and referee.event (DDS)",
+      "referee_gateway"};
+  app.add_option("--config", flags.config_file, "YAML config (default deploy/config/referee_gateway.yaml)");
+  app.add_option("--domain", flags.domain, "DDS domain id")->check(CLI::Range(0, 232));
+  app.add_option("--log-level", flags.log_level, "trace, debug, info, warn, error, critical or off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
+  add_override(app, "--interface", "network.interface", "multicast interface address of the referee network",
+               flags.overrides);
+  add_override(app, "--source", "source", "gc (a Game Controller) or builtin (our own referee)",
+               flags.overrides);
+  add_override(app, "--referee-port", "network.referee_port",
+               "referee multicast port (group 224.5.23.1, default 10003)", flags.overrides);
+  app.add_option("--profile", flags.profile,
+                 "built-in referee profile: arcade, strict_ai or a file (builtin only)");
+  app.add_option("--set", flags.set, "override any config key: --set heartbeat_period=0.5")->take_all();
+  app.add_flag("--print-config", flags.print_config, "print the effective config and exit");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  }
+
+  flags.overrides.insert(flags.overrides.end(), flags.set.begin(), flags.set.end());
+
+  auto logger = spdlog::default_logger()->clone("referee_gateway");
+  logger->set_level(spdlog::level::from_str(flags.log_level));
+  logger->flush_on(spdlog::level::trace);  // every line at once, also into a pipe or the journal (low rate)
+
+  if (flags.config_file.empty()) {
+    auto found = ssl::find_deploy_file("config/referee_gateway.yaml");
+    if (!found) {
+      logger->critical("{}", found.error().message);
+      return 1;
+    }
+    flags.config_file = *found;
+  }
+  auto config = ssl::referee::load_referee_gateway_config(flags.config_file, flags.overrides);
+  if (!config) {
+    logger->critical("{}", config.error().message);
+    return 1;
+  }
+  if (config->source == ssl::referee::SourceKind::kBuiltin) {
+    logger->critical(
+        "the built-in referee (--source builtin) is not available yet; run a Game Controller and "
+        "use --source gc");
+    return 2;
+  }
+  if (!flags.profile.empty()) {
+    logger->critical("--profile selects a built-in referee profile and needs --source builtin");
+    return 2;
+  }
+  if (flags.print_config) {
+    std::cout << ssl::referee::referee_gateway_config_yaml(*config);
+    return 0;
+  }
+
+  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "referee_gateway"});
+  if (!participant) {
+    logger->critical("{}", participant.error().message);
+    return 1;
+  }
+  ssl::time::RealClock wall;
+  ssl::time::MonotonicClock monotonic;
+  const auto& network = config->network;
+  auto service = ssl::referee::RefereeGatewayService::open(
+      {.group = network.referee_group,
+       .port = network.referee_port,
+       .interface_address = network.interface_address,
+       .gateway = ssl::referee::gateway_options(*config),
+       .source = ssl::referee::RefereeSource::kGameController,
+       .log_interval = ssl::time::duration_from_seconds(config->log_interval)},
+      *participant, logger, wall, monotonic);
+  if (!service) {
+    logger->critical("{}", service.error().message);
+    return 1;
+  }
+  logger->info("listening for referee packets on {}:{} via {}, source {}, DDS domain {}",
+               network.referee_group, network.referee_port, network.interface_address,
+               config->source_identifier, flags.domain);
+  (*service)->start();
+  shutdown.wait();
+  logger->info("stopping");
+  (*service)->stop();
+  return 0;
+}

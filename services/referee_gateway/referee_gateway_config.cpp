@@ -1,0 +1,77 @@
+#include "services/referee_gateway/referee_gateway_config.h"
+
+#include "libs/config/config.h"
+
+namespace ssl::referee {
+namespace {
+
+using config::field;
+using config::Fields;
+using config::nested;
+
+Fields<NetworkConfig> network_fields() {
+  return {
+      field("interface", &NetworkConfig::interface_address)
+          .doc("multicast interface address the referee group is joined on"),
+      field("referee_group", &NetworkConfig::referee_group).doc("the Game Controller's multicast group"),
+      field("referee_port", &NetworkConfig::referee_port).range(1, 65535),
+  };
+}
+
+Fields<RefereeGatewayConfig> gateway_fields() {
+  return Fields<RefereeGatewayConfig>{
+      field("source", &RefereeGatewayConfig::source)
+          .values({{"gc", SourceKind::kGameController}, {"builtin", SourceKind::kBuiltin}})
+          .doc("gc: a Game Controller on the referee group; builtin: our own referee"),
+      nested("network", &RefereeGatewayConfig::network, network_fields()),
+      field("source_identifier", &RefereeGatewayConfig::source_identifier)
+          .doc("auto (the first Game Controller seen) or the UUID of the one to follow"),
+      field("source_switch_after", &RefereeGatewayConfig::source_switch_after)
+          .unit("s")
+          .range(0.05, 600)
+          .doc("auto: another Game Controller is followed once the chosen one was silent this long"),
+      field("heartbeat_period", &RefereeGatewayConfig::heartbeat_period)
+          .unit("s")
+          .range(0.01, 60)
+          .doc("referee.state is republished at least this often while packets arrive"),
+      field("stale_after", &RefereeGatewayConfig::stale_after)
+          .unit("s")
+          .range(0.05, 600)
+          .doc("health turns WARN when no packet arrived for this long"),
+      field("remembered_events", &RefereeGatewayConfig::remembered_events)
+          .range(16, 1000000)
+          .doc("identities of published game events kept to publish each one once"),
+      field("log_interval", &RefereeGatewayConfig::log_interval)
+          .unit("s")
+          .range(0, 3600)
+          .doc("repeated warnings of one kind (malformed packets, counter jumps) at most this often"),
+  }
+      .check([](const RefereeGatewayConfig& config) -> Status {
+        if (config.source_identifier.empty())
+          return Error{"key 'source_identifier': empty (use auto or a UUID)"};
+        return {};
+      });
+}
+
+}  // namespace
+
+Result<RefereeGatewayConfig> load_referee_gateway_config(const std::string& path,
+                                                         const std::vector<std::string>& overrides) {
+  return config::load_file(path, gateway_fields(), overrides);
+}
+
+std::string referee_gateway_config_yaml(const RefereeGatewayConfig& config) {
+  return config::to_yaml(config, gateway_fields());
+}
+
+GatewayOptions gateway_options(const RefereeGatewayConfig& config) {
+  GatewayOptions options;
+  if (config.source_identifier != "auto") options.source_identifier = config.source_identifier;
+  options.source_switch_after = time::duration_from_seconds(config.source_switch_after);
+  options.heartbeat_period = time::duration_from_seconds(config.heartbeat_period);
+  options.stale_after = time::duration_from_seconds(config.stale_after);
+  options.remembered_events = static_cast<std::size_t>(config.remembered_events);
+  return options;
+}
+
+}  // namespace ssl::referee

@@ -1,0 +1,49 @@
+// The referee gateway's configuration (deploy/config/referee_gateway.yaml), a typed struct validated once
+// at start. Command-line flags override single keys after loading (--source, --referee-port,
+// --interface; --set key=value for any key). Durations are in seconds in the file.
+//
+//   auto config = ssl::referee::load_referee_gateway_config("deploy/config/referee_gateway.yaml",
+//                                                            {"network.referee_port=44001"});
+//   if (!config) fail(config.error().message);
+//   RefereeIngest ingest(gateway_options(*config));
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "libs/common/result.h"
+#include "services/referee_gateway/core/gateway.h"
+
+namespace ssl::referee {
+
+/// gc: listen to a Game Controller on the referee group; builtin: our own referee (a later issue).
+enum class SourceKind { kGameController, kBuiltin };
+
+struct NetworkConfig {
+  std::string interface_address;  // multicast interface the group is joined on
+  std::string referee_group;      // 224.5.23.1
+  int referee_port = 0;           // 10003
+};
+
+struct RefereeGatewayConfig {
+  SourceKind source = SourceKind::kGameController;
+  NetworkConfig network;
+  std::string source_identifier;   // "auto" or the UUID of the Game Controller to follow
+  double source_switch_after = 0;  // s
+  double heartbeat_period = 0;     // s
+  double stale_after = 0;          // s
+  int remembered_events = 0;
+  double log_interval = 0;  // s between repeated warnings of one kind (malformed, jumps, foreign)
+};
+
+/// Loads and validates a config file; `overrides` are "key.path=value" strings (from flags).
+Result<RefereeGatewayConfig> load_referee_gateway_config(const std::string& path,
+                                                         const std::vector<std::string>& overrides);
+
+/// The effective config as YAML (for --print-config).
+std::string referee_gateway_config_yaml(const RefereeGatewayConfig& config);
+
+/// The core's options from the config.
+GatewayOptions gateway_options(const RefereeGatewayConfig& config);
+
+}  // namespace ssl::referee

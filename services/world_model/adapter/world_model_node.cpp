@@ -1,0 +1,138 @@
+#include "services/world_model/adapter/world_model_node.h"
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+
+#include "services/world_model/adapter/convert.h"
+
+namespace ssl::wm {
+namespace {
+
+using namespace std::chrono_literals;
+
+double percentile(std::vector<double>& values, double q) {
+  if (values.empty()) return 0;
+  const auto index = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index), values.end());
+  return values[index];
+}
+
+}  // namespace
+
+Result<WorldModelNode> WorldModelNode::create(dds::Participant& participant, const WorldModelServiceConfig& config,
+                                              time::Clock& wall_clock) {
+  namespace topics = dds::topics;
+  auto detections = participant.make_reader(topics::kVisionDetection);
+  if (!detections) return detections.error();
+  auto geometry = participant.make_reader(topics::kVisionGeometry);
+  if (!geometry) return geometry.error();
+  auto referee = participant.make_reader(topics::kRefereeState);
+  if (!referee) return referee.error();
+  auto feedback = participant.make_reader(topics::kRobotFeedback, config.team);
+  if (!feedback) return feedback.error();
+  auto commands = participant.make_reader(topics::kRobotCommands, config.team);
+  if (!commands) return commands.error();
+  auto writer = participant.make_writer(topics::kWorldState, config.team);
+  if (!writer) return writer.error();
+  auto health = dds::HealthReporter::create(participant, "world_model/" + std::string(to_string(config.team)));
+  if (!health) return health.error();
+  return WorldModelNode(config, wall_clock, std::move(*detections), std::move(*geometry), std::move(*referee),
+                        std::move(*feedback), std::move(*commands), std::move(*writer), std::move(*health));
+}
+
+WorldModelNode::WorldModelNode(const WorldModelServiceConfig& config, time::Clock& wall_clock,
+                               dds::Reader<idl::vision::DetectionFrame> detections,
+                               dds::Reader<idl::vision::Geometry> geometry,
+                               dds::Reader<idl::referee::RefereeState> referee,
+                               dds::Reader<idl::robot::RobotFeedback> feedback,
+                               dds::Reader<idl::robot::RobotCommands> commands,
+                               dds::Writer<idl::world::WorldState> writer, dds::HealthReporter health)
+    : config_(config),
+      clock_(&wall_clock),
+      model_(config.core),
+      detections_(std::move(detections)),
+      geometry_(std::move(geometry)),
+      referee_(std::move(referee)),
+      feedback_(std::move(feedback)),
+      commands_(std::move(commands)),
+      writer_(std::move(writer)),
+      health_(std::move(health)) {
+  processing_times_.reserve(4096);
+  next_health_ = clock_->now() + 1s;
+  next_publish_ = clock_->now();
+}
+
+std::size_t WorldModelNode::poll() {
+  for (auto& s : geometry_.take()) model_.on_geometry(from_idl(s.data));
+  for (auto& s : referee_.take()) model_.on_referee(from_idl(s.data), clock_->now());
+  for (auto& s : feedback_.take()) model_.on_feedback(from_idl(s.data), clock_->now());
+  for (auto& s : commands_.take()) model_.on_commands(from_idl(s.data), clock_->now());
+  std::size_t frames = 0;
+  dds::Sample<idl::vision::DetectionFrame> sample;
+  while (detections_.take_next(sample)) {
+    const std::optional<DetectionFrame> frame = from_idl(sample.data);
+    if (!frame) {
+      ++malformed_;
+      continue;
+    }
+    const time::Timestamp start = clock_->now();
+    model_.on_detection(*frame, start);
+    processing_times_.push_back(time::to_seconds(clock_->now() - start));
+    last_frame_wall_ = start;
+    ++frames;
+    if (config_.publish_mode == PublishMode::kOnFrame) publish(clock_->now());
+  }
+  const time::Timestamp now = clock_->now();
+  if (config_.publish_mode == PublishMode::kFixedRate && now >= next_publish_ && last_frame_wall_) {
+    publish(now);
+    next_publish_ = std::max(next_publish_ + time::duration_from_seconds(1.0 / config_.publish_rate), now);
+  }
+  if (now >= next_health_) {
+    report_health(now);
+    next_health_ = now + 1s;
+  }
+  return frames;
+}
+
+void WorldModelNode::publish(time::Timestamp now) {
+  const WorldState world = model_.state(now);
+  if (!writer_.write(to_idl(world, ++sequence_, now.nanoseconds()))) ++write_failures_;
+  ++published_in_period_;
+}
+
+void WorldModelNode::report_health(time::Timestamp now) {
+  const WorldModelCounters& c = model_.counters();
+  dds::HealthReport report;
+  const bool stale =
+      !last_frame_wall_ || time::to_seconds(now - *last_frame_wall_) > config_.stale_vision_timeout;
+  report.level = stale ? dds::HealthLevel::kWarn : dds::HealthLevel::kOk;
+  report.status = stale ? "vision stale" : "running";
+  report.rate_hz = static_cast<double>(published_in_period_);
+  report.latency_p50 = percentile(processing_times_, 0.5);
+  report.latency_p99 = percentile(processing_times_, 0.99);
+  report.errors = write_failures_;
+  report.dropped = malformed_ + c.low_confidence;
+  report.counters = {{"frames", c.frames},
+                     {"outliers_rejected", c.outliers_rejected},
+                     {"tracks_created", c.tracks_created},
+                     {"tracks_lost", c.tracks_lost},
+                     {"teleports", c.teleports},
+                     {"kicks_detected", c.kicks_detected},
+                     {"ball_restarts", c.ball_restarts},
+                     {"dribbler_placements", c.dribbler_placements},
+                     {"malformed_frames", malformed_},
+                     {"low_confidence_detections", c.low_confidence}};
+  (void)health_.publish(report);
+  processing_times_.clear();
+  published_in_period_ = 0;
+}
+
+void WorldModelNode::run(ShutdownSignal& shutdown) {
+  while (!shutdown.requested()) {
+    detections_.wait_for_data(5ms);
+    poll();
+  }
+}
+
+}  // namespace ssl::wm

@@ -1,0 +1,87 @@
+// Field: the playing field's dimensions and its named points and areas in the TEAM frame (our goal at
+// negative x, see team_frame.h), for the world model and for the planner. Metres. The field is symmetric
+// under the team flip, so these depend only on the dimensions (from vision.geometry).
+//
+//   Field field(geometry.field);
+//   Vec2 aim = field.their_goal_center();            // (+L/2, 0)
+//   bool keeper_zone = field.in_our_defense_area(ball);
+#pragma once
+
+#include <array>
+#include <cmath>
+
+#include "services/world_model/core/types.h"
+
+namespace ssl::wm {
+
+class Field {
+ public:
+  explicit Field(const FieldSize& size = {}) : size_(size) {}
+
+  const FieldSize& size() const { return size_; }
+  double length() const { return size_.field_length; }
+  double width() const { return size_.field_width; }
+  double half_length() const { return size_.field_length / 2; }
+  double half_width() const { return size_.field_width / 2; }
+
+  Vec2 center() const { return Vec2::Zero(); }
+  Vec2 our_goal_center() const { return {-half_length(), 0}; }
+  Vec2 their_goal_center() const { return {half_length(), 0}; }
+  /// Goal posts (inner edge), +y first.
+  std::array<Vec2, 2> our_goal_posts() const {
+    return {Vec2(-half_length(), size_.goal_width / 2), Vec2(-half_length(), -size_.goal_width / 2)};
+  }
+  std::array<Vec2, 2> their_goal_posts() const {
+    return {Vec2(half_length(), size_.goal_width / 2), Vec2(half_length(), -size_.goal_width / 2)};
+  }
+  /// The mark the ball is placed on for a penalty on THEIR goal (we shoot), and on ours.
+  Vec2 their_penalty_mark() const { return {half_length() - size_.goal_center_to_penalty_mark, 0}; }
+  Vec2 our_penalty_mark() const { return {-half_length() + size_.goal_center_to_penalty_mark, 0}; }
+
+  /// Defense area corners on the field side: +y first, then -y. The other two are on the goal line.
+  std::array<Vec2, 2> our_defense_area_front_corners() const {
+    const double x = -half_length() + size_.penalty_area_depth;
+    return {Vec2(x, size_.penalty_area_width / 2), Vec2(x, -size_.penalty_area_width / 2)};
+  }
+  std::array<Vec2, 2> their_defense_area_front_corners() const {
+    const double x = half_length() - size_.penalty_area_depth;
+    return {Vec2(x, size_.penalty_area_width / 2), Vec2(x, -size_.penalty_area_width / 2)};
+  }
+  /// All four corners, counter-clockwise starting at the goal line's -y corner.
+  std::array<Vec2, 4> our_defense_area_corners() const {
+    const double x0 = -half_length();
+    const double x1 = x0 + size_.penalty_area_depth;
+    const double h = size_.penalty_area_width / 2;
+    return {Vec2(x0, -h), Vec2(x1, -h), Vec2(x1, h), Vec2(x0, h)};
+  }
+  std::array<Vec2, 4> their_defense_area_corners() const {
+    const double x0 = half_length();
+    const double x1 = x0 - size_.penalty_area_depth;
+    const double h = size_.penalty_area_width / 2;
+    return {Vec2(x0, h), Vec2(x1, h), Vec2(x1, -h), Vec2(x0, -h)};
+  }
+  /// Field corners: our left (+y), our right, their left, their right.
+  Vec2 our_corner_pos() const { return {-half_length(), half_width()}; }
+  Vec2 our_corner_neg() const { return {-half_length(), -half_width()}; }
+  Vec2 their_corner_pos() const { return {half_length(), half_width()}; }
+  Vec2 their_corner_neg() const { return {half_length(), -half_width()}; }
+
+  bool in_field(const Vec2& p, double margin = 0) const {
+    return std::abs(p.x()) <= half_length() + margin && std::abs(p.y()) <= half_width() + margin;
+  }
+  bool in_our_half(const Vec2& p) const { return p.x() < 0; }
+  bool in_our_defense_area(const Vec2& p, double margin = 0) const {
+    return p.x() <= -half_length() + size_.penalty_area_depth + margin && p.x() >= -half_length() - margin &&
+           std::abs(p.y()) <= size_.penalty_area_width / 2 + margin;
+  }
+  bool in_their_defense_area(const Vec2& p, double margin = 0) const {
+    return p.x() >= half_length() - size_.penalty_area_depth - margin && p.x() <= half_length() + margin &&
+           std::abs(p.y()) <= size_.penalty_area_width / 2 + margin;
+  }
+  bool in_center_circle(const Vec2& p) const { return p.norm() <= size_.center_circle_radius; }
+
+ private:
+  FieldSize size_;
+};
+
+}  // namespace ssl::wm

@@ -1,0 +1,42 @@
+#include "services/world_model/core/field.h"
+
+#include <gtest/gtest.h>
+
+namespace ssl::wm {
+namespace {
+
+TEST(WorldModelField, NamedPointsOfDivisionAInTheTeamFrame) {
+  const Field field;  // division A defaults
+  EXPECT_EQ(field.our_goal_center(), Vec2(-6.0, 0));
+  EXPECT_EQ(field.their_goal_center(), Vec2(6.0, 0));
+  EXPECT_EQ(field.their_penalty_mark(), Vec2(-2.0, 0));  // 8 m in front of their goal
+  EXPECT_EQ(field.our_penalty_mark(), Vec2(2.0, 0));
+  EXPECT_EQ(field.our_goal_posts()[0], Vec2(-6.0, 0.9));
+  EXPECT_EQ(field.their_goal_posts()[1], Vec2(6.0, -0.9));
+  EXPECT_EQ(field.our_defense_area_front_corners()[0], Vec2(-4.2, 1.8));
+  EXPECT_EQ(field.their_defense_area_front_corners()[1], Vec2(4.2, -1.8));
+  EXPECT_EQ(field.our_defense_area_corners()[0], Vec2(-6.0, -1.8));
+  EXPECT_EQ(field.their_defense_area_corners()[0], Vec2(6.0, 1.8));
+  EXPECT_EQ(field.their_corner_pos(), Vec2(6.0, 4.5));
+  EXPECT_EQ(field.our_corner_neg(), Vec2(-6.0, -4.5));
+}
+
+TEST(WorldModelField, AreasContainTheRightPoints) {
+  FieldSize b;
+  b.field_length = 9;
+  b.field_width = 6;
+  b.penalty_area_depth = 1;
+  b.penalty_area_width = 2;
+  const Field field(b);
+  EXPECT_TRUE(field.in_our_defense_area({-4.0, 0.5}));
+  EXPECT_FALSE(field.in_our_defense_area({-3.4, 0.5}));
+  EXPECT_TRUE(field.in_their_defense_area({4.2, -0.9}));
+  EXPECT_FALSE(field.in_their_defense_area({-4.2, -0.9}));
+  EXPECT_TRUE(field.in_field({4.5, 3.0}));
+  EXPECT_FALSE(field.in_field({4.6, 0}));
+  EXPECT_TRUE(field.in_center_circle({0.3, 0.3}));
+  EXPECT_TRUE(field.in_our_half({-0.1, 2}));
+}
+
+}  // namespace
+}  // namespace ssl::wm

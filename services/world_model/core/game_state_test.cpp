@@ -1,0 +1,113 @@
+#include "services/world_model/core/game_state.h"
+
+#include <gtest/gtest.h>
+
+namespace ssl::wm {
+namespace {
+
+using C = RefereeCommand;
+
+struct Fixture {
+  explicit Fixture(TeamColor us) : game(us) {}
+  void send(C command, std::optional<Vec2> designated = std::nullopt) {
+    RefereeInfo referee;
+    referee.command = command;
+    referee.command_counter = ++counter;
+    referee.designated_position = designated;
+    referee.blue_goalkeeper = 1;
+    referee.yellow_goalkeeper = 2;
+    game.update(referee, frame, ball);
+  }
+  GameState game;
+  TeamFrame frame;
+  std::uint32_t counter = 0;
+  Vec2 ball = Vec2::Zero();
+};
+
+// Every restart command, from our side and theirs, for both colours.
+TEST(WorldModelGameState, EveryRefereeCommandFromOurSideAndTheirs) {
+  for (TeamColor us : {TeamColor::kBlue, TeamColor::kYellow}) {
+    SCOPED_TRACE(std::string(to_string(us)));
+    const bool blue = us == TeamColor::kBlue;
+    Fixture f(us);
+    f.send(C::kHalt);
+    EXPECT_TRUE(f.game.is_halted());
+    EXPECT_FALSE(f.game.is_playing());
+    f.send(C::kStop);
+    EXPECT_TRUE(f.game.is_stopped());
+    EXPECT_TRUE(f.game.must_keep_distance_from_ball());
+
+    f.send(blue ? C::kPrepareKickoffBlue : C::kPrepareKickoffYellow);
+    EXPECT_TRUE(f.game.is_our_kickoff());
+    EXPECT_TRUE(f.game.is_setup());
+    f.send(C::kNormalStart);
+    EXPECT_TRUE(f.game.is_our_kickoff());
+    EXPECT_TRUE(f.game.is_ready());
+    EXPECT_FALSE(f.game.is_playing());
+    f.game.update_ball({0.1, 0});  // kicked: moved > 0.05 m
+    EXPECT_TRUE(f.game.is_playing());
+    EXPECT_FALSE(f.game.is_kickoff());
+
+    f.send(C::kStop);
+    f.send(blue ? C::kPrepareKickoffYellow : C::kPrepareKickoffBlue);
+    EXPECT_TRUE(f.game.is_their_kickoff());
+    EXPECT_TRUE(f.game.must_keep_distance_from_ball());
+
+    f.send(C::kStop);
+    f.send(blue ? C::kPreparePenaltyBlue : C::kPreparePenaltyYellow);
+    EXPECT_TRUE(f.game.is_our_penalty());
+    f.send(C::kStop);
+    f.send(blue ? C::kPreparePenaltyYellow : C::kPreparePenaltyBlue);
+    EXPECT_TRUE(f.game.is_their_penalty());
+
+    for (C ours : {blue ? C::kDirectFreeBlue : C::kDirectFreeYellow,
+                   blue ? C::kIndirectFreeBlue : C::kIndirectFreeYellow}) {
+      f.send(C::kStop);
+      f.send(ours);
+      EXPECT_TRUE(f.game.is_our_free_kick());
+      EXPECT_TRUE(f.game.is_ready());
+    }
+    for (C theirs : {blue ? C::kDirectFreeYellow : C::kDirectFreeBlue,
+                     blue ? C::kIndirectFreeYellow : C::kIndirectFreeBlue}) {
+      f.send(C::kStop);
+      f.send(theirs);
+      EXPECT_TRUE(f.game.is_their_free_kick());
+    }
+
+    f.send(blue ? C::kBallPlacementBlue : C::kBallPlacementYellow, Vec2(1.0, -2.0));
+    EXPECT_TRUE(f.game.is_our_ball_placement());
+    ASSERT_TRUE(f.game.ball_placement_position().has_value());
+    EXPECT_EQ(*f.game.ball_placement_position(), Vec2(1.0, -2.0));
+    f.send(blue ? C::kBallPlacementYellow : C::kBallPlacementBlue, Vec2(1.0, -2.0));
+    EXPECT_TRUE(f.game.is_their_ball_placement());
+
+    f.send(blue ? C::kTimeoutBlue : C::kTimeoutYellow);
+    EXPECT_TRUE(f.game.is_our_timeout());
+    f.send(blue ? C::kTimeoutYellow : C::kTimeoutBlue);
+    EXPECT_TRUE(f.game.is_their_timeout());
+
+    f.send(C::kGoalBlue);
+    EXPECT_TRUE(f.game.is_goal());
+    EXPECT_TRUE(f.game.is_stopped());
+    f.send(C::kGoalYellow);
+    EXPECT_TRUE(f.game.is_stopped());
+    f.send(C::kForceStart);
+    EXPECT_TRUE(f.game.is_playing());
+    f.send(C::kStop);
+    f.send(C::kNormalStart);
+    EXPECT_TRUE(f.game.is_playing());
+    EXPECT_EQ(f.game.our_goalkeeper(), blue ? 1u : 2u);
+    EXPECT_EQ(f.game.their_goalkeeper(), blue ? 2u : 1u);
+  }
+}
+
+TEST(WorldModelGameState, BallPlacementPositionIsInTheTeamFrame) {
+  Fixture f(TeamColor::kYellow);
+  f.frame = TeamFrame::make(TeamColor::kYellow, /*blue_on_positive_half=*/false);  // yellow defends +x
+  f.send(C::kBallPlacementYellow, Vec2(2.0, 1.0));
+  ASSERT_TRUE(f.game.ball_placement_position().has_value());
+  EXPECT_EQ(*f.game.ball_placement_position(), Vec2(-2.0, -1.0));
+}
+
+}  // namespace
+}  // namespace ssl::wm

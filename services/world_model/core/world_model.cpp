@@ -1,0 +1,291 @@
+#include "services/world_model/core/world_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ssl::wm {
+namespace {
+
+double seconds(time::Duration d) { return time::to_seconds(d); }
+
+}  // namespace
+
+WorldModel::WorldModel(const WorldModelConfig& config)
+    : config_(config),
+      frame_(TeamFrame::make(config.team, false)),
+      game_(config.team),
+      ball_(config.ball, config.ball_model) {}
+
+time::Timestamp WorldModel::to_vision(time::Timestamp now) const {
+  return now - time::duration_from_seconds(offset_.value_or(0));
+}
+
+void WorldModel::on_geometry(const Geometry& geometry) {
+  field_ = Field(geometry.field);
+  if (geometry.ball_model) ball_.set_model(*geometry.ball_model);
+}
+
+void WorldModel::on_referee(const RefereeInfo& referee, time::Timestamp now) {
+  if (referee.blue_team_on_positive_half) {
+    frame_ = TeamFrame::make(config_.team, *referee.blue_team_on_positive_half);
+  }
+  std::optional<Vec2> ball;
+  if (ball_.initialised()) ball = ball_.predict_state(to_vision(now)).head<2>();
+  game_.update(referee, frame_, ball);
+}
+
+void WorldModel::on_feedback(const RobotFeedback& feedback, time::Timestamp now) {
+  if (feedback.id >= kMaxRobotsPerTeam) return;
+  ball_in_dribbler_[feedback.id] = feedback.ball_in_dribbler;
+  feedback_time_[feedback.id] = now;
+}
+
+void WorldModel::on_commands(std::span<const RobotCommand> commands, time::Timestamp now) {
+  const time::Timestamp t = to_vision(now);
+  for (const RobotCommand& command : commands) {
+    if (command.id >= kMaxRobotsPerTeam) continue;
+    if (Track& track = tracks(config_.team)[command.id]) track->set_command(command, t);
+  }
+}
+
+void WorldModel::on_detection(const DetectionFrame& frame, time::Timestamp now) {
+  ++counters_.frames;
+  const double sample = seconds(now - frame.sent_time);
+  offset_ = offset_ ? std::min(sample, *offset_ + config_.offset_drift) : sample;
+  const time::Timestamp t = frame.capture_time;
+
+  update_robots(TeamColor::kBlue, frame.robots_blue, t);
+  update_robots(TeamColor::kYellow, frame.robots_yellow, t);
+  update_ball(frame.balls, t);
+  update_possession(t);
+  drop_lost_tracks(t);
+  if (ball_.initialised()) game_.update_ball(ball_.predict_state(t).head<2>());
+
+  if (t >= stamp_.capture_time) {
+    stamp_.capture_time = t;
+    stamp_.receive_time = frame.receive_time;
+    stamp_.camera_id = frame.camera_id;
+    stamp_.frame_number = frame.frame_number;
+  }
+}
+
+void WorldModel::update_robots(TeamColor team, std::span<const RobotDetection> detections, time::Timestamp t) {
+  TeamTracks& team_tracks = tracks(team);
+  for (const RobotDetection& detection : detections) {
+    ++counters_.robot_detections;
+    if (detection.id >= kMaxRobotsPerTeam) continue;
+    if (detection.confidence < config_.min_confidence) {
+      ++counters_.low_confidence;
+      continue;
+    }
+    Track& track = team_tracks[detection.id];
+    if (!track) {
+      track.emplace(config_.robot, detection, t);
+      ++counters_.tracks_created;
+      continue;
+    }
+    switch (track->update(detection, t)) {
+      case RobotFilter::UpdateResult::kFused: break;
+      case RobotFilter::UpdateResult::kOutlier: ++counters_.outliers_rejected; break;
+      case RobotFilter::UpdateResult::kTeleported: ++counters_.teleports; break;
+    }
+  }
+}
+
+Vec2 WorldModel::dribbler_point(const RobotFilter::State& x) const {
+  const double reach = config_.center_to_dribbler + field_.size().ball_radius;
+  return {x(0) + reach * std::cos(x(2)), x(1) + reach * std::sin(x(2))};
+}
+
+std::optional<Vec2> WorldModel::held_ball_position(time::Timestamp t, std::uint32_t* holder,
+                                                   Vec2* velocity) const {
+  // Feedback times are on the host clock: compare with the vision instant mapped back.
+  const time::Timestamp now = t + time::duration_from_seconds(offset_.value_or(0));
+  const TeamTracks& ours = tracks(config_.team);
+  for (std::uint32_t id = 0; id < kMaxRobotsPerTeam; ++id) {
+    if (!ball_in_dribbler_[id] || !ours[id]) continue;
+    if (std::abs(seconds(now - feedback_time_[id])) > config_.feedback_timeout) continue;
+    const RobotFilter::State x = ours[id]->predict_state(t);
+    if (holder) *holder = id;
+    if (velocity) *velocity = x.segment<2>(3);
+    return dribbler_point(x);
+  }
+  return std::nullopt;
+}
+
+void WorldModel::update_ball(std::span<const BallDetection> detections, time::Timestamp t) {
+  // Pick the detection closest to the prediction; the rest are rejected.
+  const BallDetection* best = nullptr;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (const BallDetection& detection : detections) {
+    ++counters_.ball_detections;
+    if (detection.confidence < config_.min_confidence) {
+      ++counters_.low_confidence;
+      continue;
+    }
+    const double d2 = ball_.distance2(detection.position, t);
+    if (d2 < best_d2) {
+      if (best) ++counters_.outliers_rejected;
+      best = &detection;
+      best_d2 = d2;
+    } else {
+      ++counters_.outliers_rejected;
+    }
+  }
+
+  Vec2 holder_velocity = Vec2::Zero();
+  const std::optional<Vec2> held = held_ball_position(t, nullptr, &holder_velocity);
+  if (held && (!best || (best->position - *held).norm() > config_.dribbler_capture_distance)) {
+    ball_.place(*held, holder_velocity, t);
+    ++counters_.dribbler_placements;
+    return;
+  }
+  if (!best) return;
+
+  bool near_robot = false;
+  for (const TeamTracks& team_tracks : tracks_) {
+    for (const Track& track : team_tracks) {
+      if (track && (track->filter().state().head<2>() - best->position).norm() < config_.near_robot_distance) {
+        near_robot = true;
+      }
+    }
+  }
+  switch (ball_.update(best->position, t, near_robot)) {
+    case BallFilter::UpdateResult::kInitialised:
+    case BallFilter::UpdateResult::kFused: break;
+    case BallFilter::UpdateResult::kOutlier: ++counters_.outliers_rejected; break;
+    case BallFilter::UpdateResult::kRestarted: ++counters_.ball_restarts; break;
+    case BallFilter::UpdateResult::kKick: ++counters_.kicks_detected; break;
+  }
+}
+
+void WorldModel::update_possession(time::Timestamp t) {
+  if (!ball_.initialised()) return;
+  std::uint32_t holder = 0;
+  if (held_ball_position(t, &holder, nullptr)) {
+    possession_ = Possession::kFriendly;
+    possessing_robot_ = holder;
+    return;
+  }
+  const Vec2 ball = ball_.predict_state(t).head<2>();
+  std::optional<std::uint32_t> friendly, enemy;
+  double best_friendly = config_.possession_distance, best_enemy = config_.possession_distance;
+  for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
+    const TeamTracks& team_tracks = tracks(team);
+    for (std::uint32_t id = 0; id < kMaxRobotsPerTeam; ++id) {
+      if (!team_tracks[id]) continue;
+      const RobotFilter::State x = team_tracks[id]->predict_state(t);
+      // Ball surface to the dribbler's front point (dribbler_point is where the ball centre sits).
+      const double gap = (dribbler_point(x) - ball).norm();
+      const bool ours = team == config_.team;
+      double& best = ours ? best_friendly : best_enemy;
+      if (gap <= best) {
+        best = gap;
+        (ours ? friendly : enemy) = id;
+      }
+    }
+  }
+  if (friendly && enemy) {
+    possession_ = Possession::kContested;
+    possessing_robot_ = best_friendly <= best_enemy ? friendly : enemy;
+  } else if (friendly) {
+    possession_ = Possession::kFriendly;
+    possessing_robot_ = friendly;
+  } else if (enemy) {
+    possession_ = Possession::kEnemy;
+    possessing_robot_ = enemy;
+  }
+  // Nobody touches it: the last toucher stays (possession means "has, or last touched").
+}
+
+void WorldModel::drop_lost_tracks(time::Timestamp t) {
+  for (TeamTracks& team_tracks : tracks_) {
+    for (Track& track : team_tracks) {
+      if (track && seconds(t - track->last_update()) > config_.robot_lost_timeout) {
+        track.reset();
+        ++counters_.tracks_lost;
+      }
+    }
+  }
+}
+
+std::optional<KickEvent> WorldModel::last_kick() const {
+  std::optional<KickEvent> kick = ball_.last_kick();
+  if (kick) {
+    kick->position = frame_.point(kick->position);
+    kick->velocity = frame_.vector(kick->velocity);
+  }
+  return kick;
+}
+
+WorldState WorldModel::state(time::Timestamp now) const { return state_at_vision_time(to_vision(now)); }
+
+WorldState WorldModel::state_at_vision_time(time::Timestamp t) const {
+  WorldState world;
+  world.team = config_.team;
+  world.stamp = stamp_;
+  world.predicted_to = t;
+  world.flipped = frame_.flipped();
+  world.possession = possession_;
+  world.possessing_robot = possessing_robot_;
+
+  for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
+    std::vector<RobotState>& out = team == config_.team ? world.friendly : world.enemy;
+    const TeamTracks& team_tracks = tracks(team);
+    for (std::uint32_t id = 0; id < kMaxRobotsPerTeam; ++id) {
+      if (!team_tracks[id]) continue;
+      const RobotFilter::State x = team_tracks[id]->predict_state(t);
+      const double age = std::max(0.0, seconds(stamp_.capture_time - team_tracks[id]->last_update()));
+      RobotState robot;
+      robot.id = id;
+      robot.position = frame_.point(x.head<2>());
+      robot.orientation = frame_.angle(x(2));
+      robot.velocity = frame_.vector(x.segment<2>(3));
+      robot.angular_velocity = x(5);
+      robot.visible = age <= config_.visible_timeout;
+      robot.confidence = std::clamp(1.0 - age / config_.robot_lost_timeout, 0.0, 1.0);
+      out.push_back(robot);
+    }
+  }
+
+  if (ball_.initialised()) {
+    const double age = std::max(0.0, seconds(stamp_.capture_time - ball_.last_update()));
+    if (age <= config_.ball_lost_timeout) {
+      world.has_ball = true;
+      BallFilter::State x = ball_.predict_state(t);
+      Vec2 position = x.head<2>();
+      Vec2 velocity = x.tail<2>();
+      Vec2 holder_velocity = Vec2::Zero();
+      if (const std::optional<Vec2> held = held_ball_position(t, nullptr, &holder_velocity)) {
+        position = *held;
+        velocity = holder_velocity;
+        world.ball.in_dribbler = true;
+      } else {
+        // Predicted through a hidden stretch: a ball cannot pass through a robot; stop it at its hull.
+        const double min_gap = config_.robot_radius + field_.size().ball_radius;
+        for (const TeamTracks& team_tracks : tracks_) {
+          for (const Track& track : team_tracks) {
+            if (!track) continue;
+            const Vec2 centre = track->predict_state(t).head<2>();
+            const Vec2 offset = position - centre;
+            if (offset.norm() < min_gap && offset.norm() > 1e-9 && age > 0) {
+              position = centre + offset.normalized() * min_gap;
+              velocity = track->predict_state(t).segment<2>(3);
+            }
+          }
+        }
+      }
+      world.ball.position = Vec3(frame_.point(position).x(), frame_.point(position).y(),
+                                 field_.size().ball_radius);
+      const Vec2 v = frame_.vector(velocity);
+      world.ball.velocity = Vec3(v.x(), v.y(), 0);
+      world.ball.visible = age <= config_.visible_timeout;
+      world.ball.confidence = std::clamp(1.0 - age / config_.ball_lost_timeout, 0.0, 1.0);
+      world.ball.last_seen = ball_.last_update();
+    }
+  }
+  return world;
+}
+
+}  // namespace ssl::wm

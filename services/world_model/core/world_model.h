@@ -1,0 +1,128 @@
+// WorldModel: the pure core of the world_model service. It fuses SSL-Vision detections of every camera
+// into one track per robot (team + id) and one ball, keeps the referee's game state, the field, robot
+// feedback and the commands we sent, and answers state(now): the world predicted to `now`, in the TEAM
+// frame. No DDS, sockets, threads or clocks: every input carries its time and `now` is an argument, so
+// the same inputs give the same outputs (replays, tests).
+//
+// Clocks. Detection times are on the vision clock; `now` is this host's wall clock. The offset
+// (host - vision) is estimated as the smallest (now - sent_time) seen (the network delay is the only part
+// not stamped by SSL-Vision), rising by offset_drift per frame so a changed offset is followed. state(now)
+// predicts every track to now - offset: latency compensation of the vision processing delay and our own.
+//
+//   WorldModel model({.team = TeamColor::kBlue});
+//   model.on_geometry(geometry);
+//   model.on_referee(referee, now);
+//   model.on_detection(frame, now);        // per camera frame
+//   WorldState world = model.state(now);   // team frame, predicted to now
+//
+// Cost: on_detection allocates nothing (fixed arrays of filters); state() allocates its output vectors.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "services/world_model/core/ball_filter.h"
+#include "services/world_model/core/field.h"
+#include "services/world_model/core/game_state.h"
+#include "services/world_model/core/robot_filter.h"
+#include "services/world_model/core/team_frame.h"
+#include "services/world_model/core/types.h"
+
+namespace ssl::wm {
+
+struct WorldModelConfig {
+  TeamColor team = TeamColor::kBlue;
+  RobotFilterParams robot;
+  BallFilterParams ball;
+  BallModel ball_model;                 // replaced by the geometry's when it sends one
+  double min_confidence = 0.1;          // detections below are ignored (counted)
+  double robot_lost_timeout = 1.0;      // s without a detection: the track is dropped
+  double ball_lost_timeout = 5.0;       // s without a detection: no ball
+  double visible_timeout = 0.1;         // s: visible when seen this recently
+  double feedback_timeout = 0.2;        // s: robot.feedback older than this is ignored
+  double center_to_dribbler = 0.078;    // m, robot centre to its flat front
+  double robot_radius = 0.09;           // m
+  double possession_distance = 0.03;    // m, ball surface to dribbler: touching
+  double near_robot_distance = 0.14;    // m, ball centre to robot centre: detection noise inflated
+  double dribbler_capture_distance = 0.1;  // m: a detection this close to a holding dribbler is used
+  double offset_drift = 1e-5;           // s per frame the clock offset estimate may rise
+};
+
+/// Counters since construction, for system.health.
+struct WorldModelCounters {
+  std::uint64_t frames = 0;
+  std::uint64_t robot_detections = 0;
+  std::uint64_t ball_detections = 0;
+  std::uint64_t low_confidence = 0;
+  std::uint64_t outliers_rejected = 0;
+  std::uint64_t tracks_created = 0;
+  std::uint64_t tracks_lost = 0;
+  std::uint64_t teleports = 0;
+  std::uint64_t kicks_detected = 0;
+  std::uint64_t ball_restarts = 0;
+  std::uint64_t dribbler_placements = 0;
+};
+
+class WorldModel {
+ public:
+  explicit WorldModel(const WorldModelConfig& config);
+
+  /// One camera frame (vision frame, vision clock); `now` = host wall clock when it is processed.
+  void on_detection(const DetectionFrame& frame, time::Timestamp now);
+  void on_geometry(const Geometry& geometry);
+  void on_referee(const RefereeInfo& referee, time::Timestamp now);
+  /// Feedback of one of OUR robots.
+  void on_feedback(const RobotFeedback& feedback, time::Timestamp now);
+  /// The commands we sent to OUR robots (local frame), taken as in force from `now`.
+  void on_commands(std::span<const RobotCommand> commands, time::Timestamp now);
+
+  /// The world predicted to `now` (host wall clock), in the team frame.
+  WorldState state(time::Timestamp now) const;
+  /// The same, predicted to a vision-clock instant (tests, replays).
+  WorldState state_at_vision_time(time::Timestamp t_vision) const;
+
+  const WorldModelCounters& counters() const { return counters_; }
+  const GameState& game_state() const { return game_; }
+  const Field& field() const { return field_; }
+  const TeamFrame& team_frame() const { return frame_; }
+  /// The last kick, in the TEAM frame.
+  std::optional<KickEvent> last_kick() const;
+  /// Host wall clock minus vision clock, s (nullopt before the first frame).
+  std::optional<double> clock_offset() const { return offset_; }
+  /// Vision-clock capture time of the newest frame.
+  time::Timestamp newest_capture() const { return stamp_.capture_time; }
+
+ private:
+  using Track = std::optional<RobotFilter>;
+  using TeamTracks = std::array<Track, kMaxRobotsPerTeam>;
+
+  static std::size_t team_index(TeamColor team) { return team == TeamColor::kBlue ? 0 : 1; }
+  TeamTracks& tracks(TeamColor team) { return tracks_[team_index(team)]; }
+  const TeamTracks& tracks(TeamColor team) const { return tracks_[team_index(team)]; }
+
+  void update_robots(TeamColor team, std::span<const RobotDetection> detections, time::Timestamp t);
+  void update_ball(std::span<const BallDetection> detections, time::Timestamp t);
+  void update_possession(time::Timestamp t);
+  void drop_lost_tracks(time::Timestamp t);
+  std::optional<Vec2> held_ball_position(time::Timestamp t, std::uint32_t* holder, Vec2* velocity) const;
+  Vec2 dribbler_point(const RobotFilter::State& x) const;
+  time::Timestamp to_vision(time::Timestamp now) const;
+
+  WorldModelConfig config_;
+  Field field_;
+  TeamFrame frame_;
+  GameState game_;
+  std::array<TeamTracks, 2> tracks_;  // blue, yellow
+  BallFilter ball_;
+  std::array<bool, kMaxRobotsPerTeam> ball_in_dribbler_{};
+  std::array<time::Timestamp, kMaxRobotsPerTeam> feedback_time_{};                        // host clock
+  std::optional<double> offset_;
+  VisionStamp stamp_;
+  Possession possession_ = Possession::kNone;
+  std::optional<std::uint32_t> possessing_robot_;
+  WorldModelCounters counters_;
+};
+
+}  // namespace ssl::wm

@@ -1,0 +1,83 @@
+// world_model: fuses vision.detection, vision.geometry, referee.state, robot.feedback and robot.commands
+// into world.state for one team (team frame, our goal at -x), published after every camera frame.
+// Flags override keys of deploy/config/world_model.yaml.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "libs/common/deploy_files.h"
+#include "libs/common/shutdown.h"
+#include "libs/dds/participant.h"
+#include "libs/time/clock.h"
+#include "services/world_model/adapter/world_model_node.h"
+#include "services/world_model/world_model_config.h"
+
+int main(int argc, char** argv) {
+  ssl::ShutdownSignal shutdown;  // before any thread exists
+  std::string config_file;
+  int domain = 0;
+  std::string interface_address;
+  std::string log_level = "info";
+  bool print_config = false;
+  std::vector<std::string> overrides;
+
+  CLI::App app{"world_model: filtered ball and robots in the team frame (world.state)", "world_model"};
+  app.add_option("--config", config_file, "YAML config (default deploy/config/world_model.yaml)");
+  app.add_option("--domain", domain, "DDS domain id")->check(CLI::Range(0, 232));
+  app.add_option("--interface", interface_address, "multicast interface address (accepted for uniformity)");
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
+  app.add_option_function<std::string>(
+         "--team", [&overrides](const std::string& team) { overrides.push_back("team=" + team); },
+         "our colour: blue or yellow")
+      ->check(CLI::IsMember({"blue", "yellow"}));
+  app.add_option("--set", overrides, "override any config key: --set filter.ball.position_stddev=0.005")
+      ->take_all();
+  app.add_flag("--print-config", print_config, "print the effective config and exit");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  }
+
+  auto logger = spdlog::default_logger()->clone("world_model");
+  logger->set_level(spdlog::level::from_str(log_level));
+
+  if (config_file.empty()) {
+    auto found = ssl::find_deploy_file("config/world_model.yaml");
+    if (!found) {
+      logger->critical("{}", found.error().message);
+      return 1;
+    }
+    config_file = *found;
+  }
+  auto config = ssl::wm::load_world_model_config(config_file, overrides);
+  if (!config) {
+    logger->critical("{}", config.error().message);
+    return 1;
+  }
+  if (print_config) {
+    std::cout << ssl::wm::world_model_config_yaml(*config);
+    return 0;
+  }
+
+  const std::string team(ssl::to_string(config->team));
+  auto participant = ssl::dds::Participant::create({.domain_id = domain, .name = "world_model/" + team});
+  if (!participant) {
+    logger->critical("{}", participant.error().message);
+    return 1;
+  }
+  ssl::time::RealClock wall_clock;
+  auto node = ssl::wm::WorldModelNode::create(*participant, *config, wall_clock);
+  if (!node) {
+    logger->critical("{}", node.error().message);
+    return 1;
+  }
+  logger->info("team {}, domain {}, publishing world.state {}", team, domain,
+               config->publish_mode == ssl::wm::PublishMode::kOnFrame ? "after every camera frame"
+                                                                      : "at a fixed rate");
+  node->run(shutdown);
+  logger->info("stopping");
+  return 0;
+}

@@ -1,0 +1,101 @@
+#include "services/world_model/world_model_config.h"
+
+#include "libs/config/config.h"
+
+namespace ssl::wm {
+namespace {
+
+using config::field;
+using config::Fields;
+using config::nested;
+
+Fields<RobotFilterParams> robot_fields() {
+  return {
+      field("position_stddev", &RobotFilterParams::position_stddev).unit("m").range(1e-4, 0.1),
+      field("orientation_stddev", &RobotFilterParams::orientation_stddev).unit("rad").range(1e-4, 1),
+      field("acceleration_stddev", &RobotFilterParams::acceleration_stddev).unit("m/s^2").range(0.01, 100)
+          .doc("process noise without a command (enemy robots)"),
+      field("commanded_acceleration_stddev", &RobotFilterParams::commanded_acceleration_stddev)
+          .unit("m/s^2").range(0.01, 100).doc("process noise while following our command"),
+      field("angular_acceleration_stddev", &RobotFilterParams::angular_acceleration_stddev)
+          .unit("rad/s^2").range(0.01, 1000),
+      field("commanded_angular_acceleration_stddev", &RobotFilterParams::commanded_angular_acceleration_stddev)
+          .unit("rad/s^2").range(0.01, 1000),
+      field("max_acceleration", &RobotFilterParams::max_acceleration).unit("m/s^2").range(0.1, 50),
+      field("max_angular_acceleration", &RobotFilterParams::max_angular_acceleration).unit("rad/s^2")
+          .range(0.1, 1000),
+      field("command_timeout", &RobotFilterParams::command_timeout).unit("s").range(0.001, 5),
+      field("gate_distance", &RobotFilterParams::gate_distance).unit("m").range(0.01, 10)
+          .doc("beyond prediction + max_speed * dt: teleport candidate"),
+      field("max_speed", &RobotFilterParams::max_speed).unit("m/s").range(0.1, 20),
+  };
+}
+
+Fields<BallFilterParams> ball_fields() {
+  return {
+      field("position_stddev", &BallFilterParams::position_stddev).unit("m").range(1e-4, 0.1),
+      field("near_robot_position_stddev", &BallFilterParams::near_robot_position_stddev).unit("m")
+          .range(1e-4, 0.5),
+      field("acceleration_stddev", &BallFilterParams::acceleration_stddev).unit("m/s^2").range(0.001, 100),
+      field("gate_mahalanobis2", &BallFilterParams::gate_mahalanobis2).range(1, 1e6)
+          .doc("chi-square gate, 2 dof"),
+      field("gate_min_distance", &BallFilterParams::gate_min_distance).unit("m").range(0, 1),
+      field("max_ball_speed", &BallFilterParams::max_ball_speed).unit("m/s").range(1, 30),
+      field("reinit_detections", &BallFilterParams::reinit_detections).range(1, 8),
+      field("kick_speed_increase", &BallFilterParams::kick_speed_increase).unit("m/s").range(0.1, 20),
+  };
+}
+
+Fields<BallModel> ball_model_fields() {
+  return {
+      field("acc_slide", &BallModel::acc_slide).unit("m/s^2").range(-50, -0.01),
+      field("acc_roll", &BallModel::acc_roll).unit("m/s^2").range(-10, -0.001),
+      field("k_switch", &BallModel::k_switch).range(0.01, 1),
+  };
+}
+
+Fields<WorldModelConfig> core_fields() {
+  return {
+      nested("robot", &WorldModelConfig::robot, robot_fields()),
+      nested("ball", &WorldModelConfig::ball, ball_fields()),
+      nested("ball_model", &WorldModelConfig::ball_model, ball_model_fields()),
+      field("min_confidence", &WorldModelConfig::min_confidence).range(0, 1),
+      field("robot_lost_timeout", &WorldModelConfig::robot_lost_timeout).unit("s").range(0.01, 60),
+      field("ball_lost_timeout", &WorldModelConfig::ball_lost_timeout).unit("s").range(0.01, 600),
+      field("visible_timeout", &WorldModelConfig::visible_timeout).unit("s").range(0.001, 10),
+      field("feedback_timeout", &WorldModelConfig::feedback_timeout).unit("s").range(0.001, 10),
+      field("center_to_dribbler", &WorldModelConfig::center_to_dribbler).unit("m").range(0.01, 0.2),
+      field("robot_radius", &WorldModelConfig::robot_radius).unit("m").range(0.05, 0.2),
+      field("possession_distance", &WorldModelConfig::possession_distance).unit("m").range(0, 0.5),
+      field("near_robot_distance", &WorldModelConfig::near_robot_distance).unit("m").range(0, 1),
+      field("dribbler_capture_distance", &WorldModelConfig::dribbler_capture_distance).unit("m").range(0, 1),
+  };
+}
+
+Fields<WorldModelServiceConfig> service_fields() {
+  return {
+      field("team", &WorldModelServiceConfig::team)
+          .values({{"blue", TeamColor::kBlue}, {"yellow", TeamColor::kYellow}}),
+      field("publish_mode", &WorldModelServiceConfig::publish_mode)
+          .values({{"on_frame", PublishMode::kOnFrame}, {"fixed_rate", PublishMode::kFixedRate}})
+          .doc("on_frame: after every camera frame; fixed_rate: publish_rate Hz"),
+      field("publish_rate", &WorldModelServiceConfig::publish_rate).unit("Hz").range(1, 1000),
+      field("stale_vision_timeout", &WorldModelServiceConfig::stale_vision_timeout).unit("s").range(0.01, 10),
+      nested("filter", &WorldModelServiceConfig::core, core_fields()),
+  };
+}
+
+}  // namespace
+
+Result<WorldModelServiceConfig> load_world_model_config(const std::string& path,
+                                                        const std::vector<std::string>& overrides) {
+  auto loaded = config::load_file(path, service_fields(), overrides);
+  if (loaded) loaded->core.team = loaded->team;
+  return loaded;
+}
+
+std::string world_model_config_yaml(const WorldModelServiceConfig& config) {
+  return config::to_yaml(config, service_fields());
+}
+
+}  // namespace ssl::wm

@@ -1,0 +1,27 @@
+// The world_model's configuration (deploy/config/world_model.yaml), a typed struct validated once at
+// start; flags (--team) override single keys. Units per key in the schema (world_model_config.cpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "libs/common/result.h"
+#include "services/world_model/core/world_model.h"
+
+namespace ssl::wm {
+
+enum class PublishMode { kOnFrame, kFixedRate };
+
+struct WorldModelServiceConfig {
+  TeamColor team = TeamColor::kBlue;
+  PublishMode publish_mode = PublishMode::kOnFrame;
+  double publish_rate = 100;          // Hz, kFixedRate only
+  double stale_vision_timeout = 0.2;  // s without a frame: health WARN
+  WorldModelConfig core;
+};
+
+Result<WorldModelServiceConfig> load_world_model_config(const std::string& path,
+                                                        const std::vector<std::string>& overrides);
+std::string world_model_config_yaml(const WorldModelServiceConfig& config);
+
+}  // namespace ssl::wm
