@@ -98,7 +98,9 @@ struct ReaderStatus final : eprosima::fastdds::dds::DataReaderListener {
   std::int32_t alive_writers = 0;
   // Set before the DataReader exists and never changed: when set, runs on the Fast DDS thread for each
   // data notification (callback mode) besides waking waiters.
-  std::function<void()> on_data;
+  // Receives the DataReader Fast DDS passes to the listener: data can arrive before
+  // create_datareader_with_profile() has returned and ReaderEntities::reader is set.
+  std::function<void(eprosima::fastdds::dds::DataReader*)> on_data;
   std::atomic<std::uint64_t> deadlines_missed{0};
   std::atomic<std::uint64_t> incompatible_qos{0};
   std::atomic<std::uint64_t> samples_lost{0};

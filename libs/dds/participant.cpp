@@ -55,8 +55,8 @@ bool WriterStatus::wait_for_matches(std::size_t count, std::chrono::nanoseconds 
   return changed.wait_for(lock, timeout, [&] { return matched >= count; });
 }
 
-void ReaderStatus::on_data_available(fdds::DataReader*) {
-  if (on_data) on_data();
+void ReaderStatus::on_data_available(fdds::DataReader* reader) {
+  if (on_data) on_data(reader);
   {
     std::lock_guard lock(mutex);
     ++data_signals;
@@ -233,7 +233,8 @@ Result<std::shared_ptr<detail::WriterEntities>> Participant::create_writer(
 
 Result<std::shared_ptr<detail::ReaderEntities>> Participant::create_reader(
     std::string_view topic_name, TopicScope scope, std::optional<TeamColor> team,
-    std::unique_ptr<fdds::TopicDataType> support, std::function<void(detail::ReaderEntities&)> on_data) {
+    std::unique_ptr<fdds::TopicDataType> support,
+    std::function<void(detail::ReaderEntities&, fdds::DataReader*)> on_data) {
   if (auto ok = check_team(topic_name, scope, team); !ok) return ok.error();
   std::lock_guard lock(state_->mutex);
   auto topic = find_or_create_topic(*state_, topic_name, std::move(support));
@@ -253,7 +254,9 @@ Result<std::shared_ptr<detail::ReaderEntities>> Participant::create_reader(
   entities->subscriber = subscriber;
   entities->topic = std::string(topic_name);
   if (on_data) {
-    entities->status.on_data = [raw = entities.get(), on_data = std::move(on_data)] { on_data(*raw); };
+    entities->status.on_data = [raw = entities.get(), on_data = std::move(on_data)](fdds::DataReader* reader) {
+      on_data(*raw, reader);
+    };
   }
   const std::string profile = entities->topic + ".reader";
   entities->reader = subscriber->create_datareader_with_profile(*topic, profile, &entities->status);

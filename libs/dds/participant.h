@@ -66,9 +66,10 @@ class Participant {
   Result<Reader<typename Spec::Sample>> make_reader(const Spec& spec, std::optional<TeamColor> team,
                                                     Callback callback) {
     using T = typename Spec::Sample;
-    auto on_data = [callback = std::move(callback)](detail::ReaderEntities& entities) mutable {
+    auto on_data = [callback = std::move(callback)](detail::ReaderEntities& entities,
+                                                    eprosima::fastdds::dds::DataReader* reader) mutable {
       Sample<T> sample;
-      while (Reader<T>::take_next(entities, sample)) callback(std::as_const(sample));
+      while (Reader<T>::take_next(reader, entities, sample)) callback(std::as_const(sample));
     };
     auto entities = create_reader(spec.name, spec.scope, team, std::make_unique<typename Spec::Support>(),
                                   std::move(on_data));
@@ -88,7 +89,7 @@ class Participant {
   Result<std::shared_ptr<detail::ReaderEntities>> create_reader(
       std::string_view topic, TopicScope scope, std::optional<TeamColor> team,
       std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support,
-      std::function<void(detail::ReaderEntities&)> on_data);
+      std::function<void(detail::ReaderEntities&, eprosima::fastdds::dds::DataReader*)> on_data);
 
   std::shared_ptr<detail::ParticipantState> state_;
 };

@@ -60,12 +60,14 @@ class Reader {
   }
 
   /// Takes the next unread sample into `out`; false when none is left.
-  bool take_next(Sample<T>& out) { return take_next(*entities_, out); }
+  bool take_next(Sample<T>& out) { return take_next(entities_->reader, *entities_, out); }
 
-  /// The same on bare entities, for the callback that Participant::make_reader installs.
-  static bool take_next(detail::ReaderEntities& entities, Sample<T>& out) {
+  /// The same on a given DataReader, for the callback that Participant::make_reader installs (it runs
+  /// with the reader Fast DDS hands it, possibly before `entities.reader` is assigned).
+  static bool take_next(eprosima::fastdds::dds::DataReader* reader, detail::ReaderEntities& entities,
+                        Sample<T>& out) {
     eprosima::fastdds::dds::SampleInfo info;
-    while (entities.reader->take_next_sample(&out.data, &info) == ReturnCode_t::RETCODE_OK) {
+    while (reader->take_next_sample(&out.data, &info) == ReturnCode_t::RETCODE_OK) {
       if (!info.valid_data) continue;  // instance state changes (disposed, no writers) carry no data
       out.source_unix_ns = detail::to_unix_ns(info.source_timestamp);
       out.reception_unix_ns = detail::to_unix_ns(info.reception_timestamp);
