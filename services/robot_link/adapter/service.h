@@ -1,0 +1,30 @@
+// robot_link as a running service: wires the DDS topics (robot.commands of the team, referee.state,
+// system.estop in; robot.feedback of the team, system.health out, and system.estop out when a local
+// e-stop input is configured) to the fixed-rate LinkRunner and the configured backend, until shutdown.
+// Every topic of the process is created here (one place). On shutdown every robot is sent a stop.
+//
+//   ssl::Status ran = run_robot_link({.config = config, .team = team, .domain_id = 3}, shutdown, logger);
+#pragma once
+
+#include <spdlog/logger.h>
+
+#include <memory>
+
+#include "libs/common/result.h"
+#include "libs/common/shutdown.h"
+#include "libs/common/team.h"
+#include "services/robot_link/robot_link_config.h"
+
+namespace ssl::robot_link {
+
+struct ServiceOptions {
+  RobotLinkConfig config;
+  TeamColor team = TeamColor::kBlue;
+  int domain_id = 0;
+};
+
+/// Runs until `shutdown` is requested; an error when setup fails (backend, DDS).
+Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
+                      const std::shared_ptr<spdlog::logger>& logger);
+
+}  // namespace ssl::robot_link
