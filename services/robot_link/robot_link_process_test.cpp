@@ -3,8 +3,9 @@
 // datagrams robot_link sends. Killing the planner (SIGKILL) must stop the robot within the watchdog's
 // 100 ms plus one send period (a functional bound with a small scheduling margin, not a benchmark); the
 // e-stop stops every robot, stays latched when its writer dies, and only an explicit release restores
-// commands; referee HALT stops robots; against our real simulator, robot.feedback is published.
-// Each test has its own DDS domain (121-124) and UDP ports (47211-47224).
+// commands; referee HALT stops robots; against our real simulator, robot.feedback is published; a radio
+// base station stand-in answers command frames with a status frame whose values reach robot.feedback.
+// Each test has its own DDS domain (121-125) and UDP ports (47211-47230).
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -18,6 +19,7 @@
 
 #include "libs/league/decode.h"
 #include "libs/net/udp.h"
+#include "services/robot_link/radio/radio_frame.h"
 #include "tests/support/process.h"
 
 namespace ssl::testing {
@@ -297,6 +299,58 @@ TEST(RobotLinkProcessTest, DrivesOurSimulatorAndPublishesItsFeedback) {
   EXPECT_EQ(counter(health, "send_errors"), 0u);
 
   for (ChildProcess* child : {&planner, &robot_link, &simulator}) child->signal(SIGTERM);
+  EXPECT_EQ(robot_link.wait(kTimeout), 0) << robot_link.drain_stderr();
+}
+
+TEST(RobotLinkProcessTest, RadioStatusFramesReachRobotFeedbackWithLinkQuality) {
+  // The base station stand-in: receives robot_link's command frames and answers each with a status frame.
+  net::UdpSocket base_station = SimStandIn::open(47230);
+  auto robot_link = start("robot_link", {"--team", "blue", "--domain", "125", "--backend", "radio",
+                                         "--set", "radio.transport=udp", "radio.host=127.0.0.1",
+                                         "radio.port=47230", "--interface", "127.0.0.1", "--log-level",
+                                         "info"});
+  auto feedback = start("sslctl", {"topic", "echo", "robot.feedback", "--team", "blue", "--domain", "125",
+                                   "--count", "1", "--timeout", "30"});
+  // Commands keep the frames (and so the base station's answers) flowing after the start-up stop.
+  auto planner = start_planner(125, 1500);
+  const robot_link::radio::StatusFrame status{
+      .sequence = 7,
+      .robots = {{.robot_id = 3, .ball_in_dribbler = true, .battery_voltage = 15.9, .kicker_charge = 0.5,
+                  .link_quality = 0.87}}};
+  const auto encoded = robot_link::radio::encode_status_frame(status);
+  ASSERT_TRUE(encoded) << encoded.error().message;
+
+  std::array<std::uint8_t, 65536> buffer{};
+  std::optional<std::string> line;
+  int command_frames = 0;
+  const auto deadline = SteadyClock::now() + kTimeout;
+  while (!line && SteadyClock::now() < deadline) {
+    const auto received = base_station.receive(buffer, milliseconds(100));
+    if (received.ok()) {
+      const auto frame = robot_link::radio::decode_frame(std::span(buffer).first(received.size));
+      ASSERT_TRUE(frame) << frame.error().message;
+      ASSERT_TRUE(std::holds_alternative<robot_link::radio::CommandFrame>(*frame));
+      ++command_frames;
+      ASSERT_TRUE(base_station.send_to(received.sender, *encoded).ok());
+    }
+    line = feedback.read_line(milliseconds(0));
+  }
+  ASSERT_TRUE(line) << command_frames << " command frames\n" << robot_link_health(125).dump() << "\n"
+                    << feedback.drain_stderr() << robot_link.drain_stderr();
+  const auto json = nlohmann::json::parse(*line);
+  SCOPED_TRACE(json.dump());
+  EXPECT_EQ(json["robot_id"], 3);
+  EXPECT_EQ(json["team"], "TEAM_COLOR_BLUE");
+  EXPECT_EQ(json["ball_in_dribbler"], true);
+  EXPECT_EQ(json["has_battery"], true);
+  EXPECT_NEAR(json["battery_voltage"].get<double>(), 15.9, 1e-3);
+  EXPECT_EQ(json["has_kicker_charge"], true);
+  EXPECT_NEAR(json["kicker_charge"].get<double>(), 0.5, 1e-9);
+  EXPECT_EQ(json["has_link_quality"], true);
+  EXPECT_NEAR(json["link_quality"].get<double>(), 0.87, 1e-9);
+  EXPECT_EQ(feedback.wait(kTimeout), 0);
+
+  for (ChildProcess* child : {&planner, &robot_link}) child->signal(SIGTERM);
   EXPECT_EQ(robot_link.wait(kTimeout), 0) << robot_link.drain_stderr();
 }
 

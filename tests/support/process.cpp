@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -80,8 +81,9 @@ std::optional<std::string> ChildProcess::read_line(std::chrono::milliseconds tim
       stdout_buffer_.erase(0, newline + 1);
       return line;
     }
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-    if (left.count() <= 0) return std::nullopt;
+    // A zero or elapsed timeout still reads what is already there (one non-blocking poll).
+    const auto left = std::max<std::chrono::milliseconds>(
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()), {});
     pollfd fd{stdout_fd_, POLLIN, 0};
     const int ready = poll(&fd, 1, static_cast<int>(left.count()));
     if (ready < 0 && errno == EINTR) continue;

@@ -46,6 +46,8 @@ idl::robot::RobotFeedback feedback_to_idl(const FeedbackReport& report, TeamColo
   sample.battery_voltage(report.battery_voltage.value_or(0));
   sample.has_kicker_charge(report.kicker_charge.has_value());
   sample.kicker_charge(report.kicker_charge.value_or(0));
+  sample.has_link_quality(report.link_quality.has_value());
+  sample.link_quality(report.link_quality.value_or(0));
   sample.receive_unix_ns(receive_unix_ns);
   return sample;
 }

@@ -57,7 +57,16 @@ TEST(RobotLinkConvertTest, HaltAndFeedback) {
   EXPECT_TRUE(sample.has_battery());
   EXPECT_DOUBLE_EQ(sample.battery_voltage(), 15.5);
   EXPECT_FALSE(sample.has_kicker_charge());
+  EXPECT_FALSE(sample.has_link_quality());
   EXPECT_EQ(sample.receive_unix_ns(), 123);
+
+  const FeedbackReport radio{.robot_id = 4, .kicker_charge = 0.25, .link_quality = 0.875};
+  const auto radio_sample = feedback_to_idl(radio, TeamColor::kBlue, 456);
+  EXPECT_TRUE(radio_sample.has_kicker_charge());
+  EXPECT_DOUBLE_EQ(radio_sample.kicker_charge(), 0.25);
+  EXPECT_TRUE(radio_sample.has_link_quality());
+  EXPECT_DOUBLE_EQ(radio_sample.link_quality(), 0.875);
+  EXPECT_FALSE(radio_sample.has_battery());
 }
 
 }  // namespace
