@@ -28,6 +28,18 @@ Fields<RobotFilterParams> robot_fields() {
       field("gate_distance", &RobotFilterParams::gate_distance).unit("m").range(0.01, 10)
           .doc("beyond prediction + max_speed * dt: teleport candidate"),
       field("max_speed", &RobotFilterParams::max_speed).unit("m/s").range(0.1, 20),
+      field("maneuver_gate", &RobotFilterParams::maneuver_gate).range(1, 1e6)
+          .doc("chi-square (3 dof): beyond it a step is re-predicted with more process noise"),
+      field("maneuver_noise_scale", &RobotFilterParams::maneuver_noise_scale).range(1, 1e6),
+      field("command_delay", &RobotFilterParams::command_delay).unit("s").range(0, 1)
+          .doc("sent -> executed by the robot"),
+      field("velocity_turns_with_robot", &RobotFilterParams::velocity_turns_with_robot)
+          .doc("without a command, also try a velocity that turns with the robot"),
+      field("motion_model_memory", &RobotFilterParams::motion_model_memory).range(0, 0.9999),
+      field("contact_acceleration_stddev", &RobotFilterParams::contact_acceleration_stddev).unit("m/s^2")
+          .range(0.01, 100),
+      field("contact_angular_acceleration_stddev", &RobotFilterParams::contact_angular_acceleration_stddev)
+          .unit("rad/s^2").range(0.1, 1000),
   };
 }
 
@@ -37,6 +49,11 @@ Fields<BallFilterParams> ball_fields() {
       field("near_robot_position_stddev", &BallFilterParams::near_robot_position_stddev).unit("m")
           .range(1e-4, 0.5),
       field("acceleration_stddev", &BallFilterParams::acceleration_stddev).unit("m/s^2").range(0.001, 100),
+      field("maneuver_mahalanobis2", &BallFilterParams::maneuver_mahalanobis2).range(1, 1e6)
+          .doc("chi-square (2 dof): beyond it a detection is a kick or a collision"),
+      field("maneuver_velocity_stddev", &BallFilterParams::maneuver_velocity_stddev).unit("m/s").range(0, 50),
+      field("maneuver_min_velocity_stddev", &BallFilterParams::maneuver_min_velocity_stddev).unit("m/s")
+          .range(0, 50),
       field("gate_mahalanobis2", &BallFilterParams::gate_mahalanobis2).range(1, 1e6)
           .doc("chi-square gate, 2 dof"),
       field("gate_min_distance", &BallFilterParams::gate_min_distance).unit("m").range(0, 1),
@@ -54,8 +71,23 @@ Fields<BallModel> ball_model_fields() {
   };
 }
 
+Fields<CameraAlignmentParams> camera_alignment_fields() {
+  return {
+      field("estimate_scale", &CameraAlignmentParams::estimate_scale)
+          .doc("per-camera scale about its centre (camera height errors)"),
+      field("estimate_rotation", &CameraAlignmentParams::estimate_rotation),
+      field("min_pairs", &CameraAlignmentParams::min_pairs).range(1, 1000000)
+          .doc("pairs of simultaneous detections a camera needs before it is corrected"),
+      field("max_speed", &CameraAlignmentParams::max_speed).unit("m/s").range(0.1, 20),
+      field("offset_drift", &CameraAlignmentParams::offset_drift).unit("m/sqrt(s)").range(0, 1),
+  };
+}
+
 Fields<WorldModelConfig> core_fields() {
   return {
+      field("align_cameras", &WorldModelConfig::align_cameras)
+          .doc("estimate each camera's calibration error from objects seen by two cameras"),
+      nested("camera_alignment", &WorldModelConfig::camera_alignment, camera_alignment_fields()),
       nested("robot", &WorldModelConfig::robot, robot_fields()),
       nested("ball", &WorldModelConfig::ball, ball_fields()),
       nested("ball_model", &WorldModelConfig::ball_model, ball_model_fields()),
@@ -69,6 +101,8 @@ Fields<WorldModelConfig> core_fields() {
       field("possession_distance", &WorldModelConfig::possession_distance).unit("m").range(0, 0.5),
       field("near_robot_distance", &WorldModelConfig::near_robot_distance).unit("m").range(0, 1),
       field("dribbler_capture_distance", &WorldModelConfig::dribbler_capture_distance).unit("m").range(0, 1),
+      field("contact_margin", &WorldModelConfig::contact_margin).unit("m").range(0, 0.5)
+          .doc("robots this close to touching (or a wall) do not trust their commands"),
   };
 }
 

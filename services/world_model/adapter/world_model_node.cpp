@@ -1,6 +1,7 @@
 #include "services/world_model/adapter/world_model_node.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <string>
 
@@ -67,7 +68,14 @@ std::size_t WorldModelNode::poll() {
   for (auto& s : geometry_.take()) model_.on_geometry(from_idl(s.data));
   for (auto& s : referee_.take()) model_.on_referee(from_idl(s.data), clock_->now());
   for (auto& s : feedback_.take()) model_.on_feedback(from_idl(s.data), clock_->now());
-  for (auto& s : commands_.take()) model_.on_commands(from_idl(s.data), clock_->now());
+  for (auto& s : commands_.take()) {
+    // In force from when the planner published them (same host clock family), unless that stamp is
+    // missing or implausible (another host with a skewed clock): then from now.
+    const time::Timestamp now = clock_->now();
+    const time::Timestamp published = time::Timestamp::from_nanoseconds(s.data.publish_unix_ns());
+    const bool plausible = s.data.publish_unix_ns() > 0 && std::abs(time::to_seconds(now - published)) < 0.1;
+    model_.on_commands(from_idl(s.data), plausible ? std::min(published, now) : now);
+  }
   std::size_t frames = 0;
   dds::Sample<idl::vision::DetectionFrame> sample;
   while (detections_.take_next(sample)) {

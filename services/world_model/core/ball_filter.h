@@ -1,19 +1,29 @@
 // BallFilter: the ball on the carpet, a Kalman filter over [x, y, vx, vy] (m, m/s; VISION frame, vision
-// clock) whose prediction follows the ssl-vision straight two-phase model: a kicked ball SLIDES at
-// acc_slide until its speed falls to k_switch times the kick speed, then ROLLS at acc_roll until it stops
-// (the deceleration enters as a control input; the process noise is what the model does not explain).
+// clock) whose prediction follows the physics behind the ssl-vision two-phase model. Besides its velocity
+// v the ball has a spin, kept as the velocity s its rotation would give it on the carpet. While they differ
+// the ball SLIDES: friction pulls v towards s at acc_slide and spins the ball up at acc_slide / k
+// (k = 1 / k_switch - 1, the inertia factor); once they agree the ball ROLLS at acc_roll until it stops. A
+// ball kicked from rest thus rolls from k_switch times the kick speed, as in ssl-vision; a ball kicked while
+// rolling, or bounced off a robot against its own spin, follows the same law. The deceleration enters as a
+// control input; the process noise is what the model does not explain, small because a ball on its own is
+// very predictable.
 //
-// Gating and re-initialisation (no rewinding, fixed-size buffers, no allocation):
-//  * the detection closest to the prediction is fused when its Mahalanobis distance passes the gate;
-//  * one that fails is an OUTLIER candidate (a false detection, a reflection, ...): it does not move the
+// Kicks and collisions (no rewinding, fixed-size buffers, no allocation):
+//  * a detection the model explains (Mahalanobis distance within maneuver_mahalanobis2) is fused;
+//  * one it does not explain but that the ball could have reached (max_ball_speed since the last update)
+//    is a MANEUVER: a velocity change of unknown size at an unknown instant since the last detection (its
+//    covariance is added) and the detection is fused; the spin is kept (kicks and robot hulls push at the
+//    ball's equator). If the speed after the next detection exceeds the speed before by kick_speed_increase,
+//    it is a KICK: its time, place, speed and direction are reported (last_kick()).
+//  * one beyond reach is an OUTLIER candidate (a false detection, a reflection, ...): it does not move the
 //    ball. When the next failing detections agree with the candidates (reachable at max_ball_speed), the
-//    ball really changed its motion: the filter restarts from a straight-line fit of those detections
-//    (positions, velocity). If the new speed exceeds the old by kick_speed_increase, it is a KICK: its time,
-//    place, speed and direction are reported (last_kick()).
+//    ball really moved (teleported, put down by hand, lost track): the filter restarts from a straight-line
+//    fit of those detections.
 //  * near a robot the detection noise is inflated (the simulator and real cameras report a partly hidden
 //    ball shifted).
 // Occlusion: with no detection the state is simply predicted with the model (WorldModel stops it at robots).
-// Chip kicks are flagged (not reconstructed) when the candidates do not lie on a line; see README.
+// Chip kicks are flagged (not reconstructed) when the detections after a kick do not lie on a line; see
+// README.
 #pragma once
 
 #include <array>
@@ -25,15 +35,18 @@
 namespace ssl::wm {
 
 struct BallFilterParams {
-  double position_stddev = 0.003;          // m, detection noise assumed per axis
-  double near_robot_position_stddev = 0.02;  // m, when the ball is within near_robot_distance of a robot
-  double acceleration_stddev = 0.3;        // m/s^2, process noise (unmodelled forces)
-  double gate_mahalanobis2 = 25;           // chi-square (2 dof): ~5 sigma
-  double gate_min_distance = 0.02;         // m, never gate closer than this
-  double max_ball_speed = 10;              // m/s, candidates must be reachable from each other
-  int reinit_detections = 2;               // agreeing gate failures that restart the filter
-  double kick_speed_increase = 1.0;        // m/s, a restart that gains this much speed is a kick
-  double stopped_speed = 0.02;             // m/s, below this the ball is at rest
+  double position_stddev = 0.003;            // m, detection noise assumed per axis
+  double near_robot_position_stddev = 0.004; // m, when the ball is within near_robot_distance of a robot
+  double acceleration_stddev = 0.1;          // m/s^2, process noise (unmodelled forces)
+  double maneuver_mahalanobis2 = 16;         // chi-square (2 dof): beyond, a kick or collision
+  double maneuver_velocity_stddev = 4.0;     // m/s, velocity change assumed at a maneuver
+  double maneuver_min_velocity_stddev = 0.5; // m/s, velocity uncertainty left after a maneuver
+  double gate_mahalanobis2 = 25;             // chi-square (2 dof): within, never an outlier
+  double gate_min_distance = 0.02;           // m, margin of the reach beyond which detections are outliers
+  double max_ball_speed = 10;                // m/s, bounds the reach and the candidates' agreement
+  int reinit_detections = 2;                 // agreeing outliers that restart the filter
+  double kick_speed_increase = 1.0;          // m/s, a maneuver that gains this much speed is a kick
+  double stopped_speed = 0.02;               // m/s, below this the ball is at rest
 };
 
 struct KickEvent {
@@ -76,17 +89,33 @@ class BallFilter {
   time::Timestamp last_update() const { return last_update_; }
   const std::optional<KickEvent>& last_kick() const { return last_kick_; }
   const Filter& filter() const { return filter_; }
+  /// Rolling velocity of the ball's spin (equal to the velocity while it rolls), m/s.
+  const Vec2& spin() const { return spin_; }
 
  private:
   struct Candidate {
     Vec2 position = Vec2::Zero();
     time::Timestamp time;
   };
+  struct LineFit {
+    Vec2 position = Vec2::Zero();  // at the newest candidate's time
+    Vec2 velocity = Vec2::Zero();
+    double residual = 0;           // m, largest distance of a candidate from the line
+  };
+  // Motion over dt under the carpet friction model, from velocity v and spin s.
+  struct Motion {
+    Vec2 displacement = Vec2::Zero();
+    Vec2 velocity = Vec2::Zero();
+    Vec2 spin = Vec2::Zero();
+  };
 
-  void set_prediction(Filter& filter, double dt) const;
+  Motion advance(const Vec2& velocity, const Vec2& spin, double dt) const;
+  Vec2 set_prediction(Filter& filter, double dt) const;  // returns the spin at the end
   void predict_to(time::Timestamp t);
   void reset(const Vec2& position, const Vec2& velocity, time::Timestamp t, double velocity_var);
+  static LineFit fit_line(const Candidate* candidates, int n);
   UpdateResult restart_from_candidates();
+  UpdateResult after_update(time::Timestamp t_capture, const Vec2& detection);
 
   BallFilterParams params_;
   BallModel model_;
@@ -94,9 +123,20 @@ class BallFilter {
   bool initialised_ = false;
   time::Timestamp time_;
   time::Timestamp last_update_;
-  double slide_until_speed_ = 0;  // m/s: slides while faster (k_switch * kick speed), 0 = rolling
+  Vec2 spin_ = Vec2::Zero();
   std::array<Candidate, 8> candidates_{};
   int candidate_count_ = 0;
+  // A maneuver waiting for the next detection to tell whether it was a kick.
+  struct PendingKick {
+    bool active = false;
+    time::Timestamp time;
+    Vec2 position = Vec2::Zero();
+    double speed_before = 0;
+    int updates = 0;
+  } pending_;
+  // Detections since the last kick, for the chip check.
+  std::array<Candidate, 8> after_kick_{};
+  int after_kick_count_ = 0;
   std::optional<KickEvent> last_kick_;
 };
 

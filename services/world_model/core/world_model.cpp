@@ -15,7 +15,8 @@ WorldModel::WorldModel(const WorldModelConfig& config)
     : config_(config),
       frame_(TeamFrame::make(config.team, false)),
       game_(config.team),
-      ball_(config.ball, config.ball_model) {}
+      ball_(config.ball, config.ball_model),
+      alignment_(config.camera_alignment) {}
 
 time::Timestamp WorldModel::to_vision(time::Timestamp now) const {
   return now - time::duration_from_seconds(offset_.value_or(0));
@@ -23,6 +24,7 @@ time::Timestamp WorldModel::to_vision(time::Timestamp now) const {
 
 void WorldModel::on_geometry(const Geometry& geometry) {
   field_ = Field(geometry.field);
+  alignment_.set_camera_centers(geometry.cameras);
   if (geometry.ball_model) ball_.set_model(*geometry.ball_model);
 }
 
@@ -55,9 +57,9 @@ void WorldModel::on_detection(const DetectionFrame& frame, time::Timestamp now) 
   offset_ = offset_ ? std::min(sample, *offset_ + config_.offset_drift) : sample;
   const time::Timestamp t = frame.capture_time;
 
-  update_robots(TeamColor::kBlue, frame.robots_blue, t);
-  update_robots(TeamColor::kYellow, frame.robots_yellow, t);
-  update_ball(frame.balls, t);
+  update_robots(TeamColor::kBlue, frame.camera_id, frame.robots_blue, t);
+  update_robots(TeamColor::kYellow, frame.camera_id, frame.robots_yellow, t);
+  update_ball(frame.camera_id, frame.balls, t);
   update_possession(t);
   drop_lost_tracks(t);
   if (ball_.initialised()) game_.update_ball(ball_.predict_state(t).head<2>());
@@ -70,14 +72,22 @@ void WorldModel::on_detection(const DetectionFrame& frame, time::Timestamp now) 
   }
 }
 
-void WorldModel::update_robots(TeamColor team, std::span<const RobotDetection> detections, time::Timestamp t) {
+void WorldModel::update_robots(TeamColor team, std::uint32_t camera_id, std::span<const RobotDetection> detections,
+                               time::Timestamp t) {
   TeamTracks& team_tracks = tracks(team);
-  for (const RobotDetection& detection : detections) {
+  for (const RobotDetection& raw : detections) {
     ++counters_.robot_detections;
-    if (detection.id >= kMaxRobotsPerTeam) continue;
-    if (detection.confidence < config_.min_confidence) {
+    if (raw.id >= kMaxRobotsPerTeam) continue;
+    if (raw.confidence < config_.min_confidence) {
       ++counters_.low_confidence;
       continue;
+    }
+    // Robots seen by two cameras at once measure the cameras' calibration disagreement; every detection
+    // is then corrected by its camera's estimated error.
+    RobotDetection detection = raw;
+    if (config_.align_cameras) {
+      alignment_.observe(camera_id, ObjectKey::robot(team, raw.id), raw.position, t);
+      detection.position = alignment_.correct(camera_id, raw.position);
     }
     Track& track = team_tracks[detection.id];
     if (!track) {
@@ -85,12 +95,29 @@ void WorldModel::update_robots(TeamColor team, std::span<const RobotDetection> d
       ++counters_.tracks_created;
       continue;
     }
-    switch (track->update(detection, t)) {
+    switch (track->update(detection, t, in_contact(team, detection.id, detection.position))) {
       case RobotFilter::UpdateResult::kFused: break;
       case RobotFilter::UpdateResult::kOutlier: ++counters_.outliers_rejected; break;
       case RobotFilter::UpdateResult::kTeleported: ++counters_.teleports; break;
     }
   }
+}
+
+bool WorldModel::in_contact(TeamColor team, std::uint32_t id, const Vec2& position) const {
+  const double reach = 2 * config_.robot_radius + config_.contact_margin;
+  for (TeamColor other_team : {TeamColor::kBlue, TeamColor::kYellow}) {
+    const TeamTracks& others = tracks(other_team);
+    for (std::uint32_t other = 0; other < kMaxRobotsPerTeam; ++other) {
+      if (!others[other] || (other_team == team && other == id)) continue;
+      if ((others[other]->filter().state().head<2>() - position).squaredNorm() < reach * reach) return true;
+    }
+  }
+  // The walls stand at the outer edge of the boundary strip.
+  const FieldSize& size = field_.size();
+  const double wall_x = size.field_length / 2 + size.boundary_width;
+  const double wall_y = size.field_width / 2 + size.boundary_width;
+  const double wall_reach = config_.robot_radius + config_.contact_margin;
+  return std::abs(position.x()) > wall_x - wall_reach || std::abs(position.y()) > wall_y - wall_reach;
 }
 
 Vec2 WorldModel::dribbler_point(const RobotFilter::State& x) const {
@@ -114,20 +141,25 @@ std::optional<Vec2> WorldModel::held_ball_position(time::Timestamp t, std::uint3
   return std::nullopt;
 }
 
-void WorldModel::update_ball(std::span<const BallDetection> detections, time::Timestamp t) {
-  // Pick the detection closest to the prediction; the rest are rejected.
-  const BallDetection* best = nullptr;
+void WorldModel::update_ball(std::uint32_t camera_id, std::span<const BallDetection> detections,
+                             time::Timestamp t) {
+  // Pick the detection closest to the prediction (after the camera's correction); the rest are rejected.
+  // Balls only receive the correction: partly hidden balls look shifted differently in each camera, so
+  // they would disturb the estimate.
+  std::optional<BallDetection> best;
   double best_d2 = std::numeric_limits<double>::infinity();
-  for (const BallDetection& detection : detections) {
+  for (const BallDetection& raw : detections) {
     ++counters_.ball_detections;
-    if (detection.confidence < config_.min_confidence) {
+    if (raw.confidence < config_.min_confidence) {
       ++counters_.low_confidence;
       continue;
     }
+    BallDetection detection = raw;
+    if (config_.align_cameras) detection.position = alignment_.correct(camera_id, raw.position);
     const double d2 = ball_.distance2(detection.position, t);
     if (d2 < best_d2) {
       if (best) ++counters_.outliers_rejected;
-      best = &detection;
+      best = detection;
       best_d2 = d2;
     } else {
       ++counters_.outliers_rejected;

@@ -113,13 +113,72 @@ TEST(WorldModelAccuracy, RobotPositionAndVelocityRmsAtLeastHalfOfRawUnderRealist
               "(%.0f%% lower)\n", enemy_raw.value() * 1e3, enemy_filt.value() * 1e3,
               100 * (1 - enemy_filt.value() / enemy_raw.value()));
   EXPECT_GT(raw_pos.n, 1000u);
-  EXPECT_LT(enemy_filt.value(), enemy_raw.value());
-  // The design's target is >= 50% lower; measured 37% (seed 11). Guarded here at 30% so that a regression
-  // fails; see README "Not done" for the gap to 50%.
-  EXPECT_LE(filt_pos.value(), 0.7 * raw_pos.value());
+  // Our robots (commands known): the design's >= 50 % (measured 59 %, seed 11). Enemy robots follow no
+  // model we know; measured 37 %, guarded at 30 % so that a regression fails.
+  EXPECT_LE(filt_pos.value(), 0.5 * raw_pos.value());
+  EXPECT_LE(enemy_filt.value(), 0.7 * enemy_raw.value());
   EXPECT_LE(filt_vel.value(), 0.5 * naive_vel.value());
   EXPECT_LT(filt_ori.value(), raw_ori.value());
   EXPECT_EQ(h.model().counters().tracks_created, 12u);
+}
+
+// Robots driven the way a planner drives them: each follows a smooth path inside the field, its global
+// velocity re-aimed at 100 Hz (feed-forward plus a position term, sent as LOCAL commands turned by the
+// robot's heading) while it spins on its own schedule; robots pass each other closely now and then.
+TEST(WorldModelAccuracy, PlannerDrivenRobotsPositionRmsAtLeastHalfOfRawForOurs) {
+  SimHarness h({.robots_per_team = 6, .seed = 12});
+  Rms raw_pos, filt_pos, enemy_raw, enemy_filt, filt_vel;
+  time::Timestamp t_cmd;
+  const time::Timestamp start = h.now();
+  auto drive = [&](SimHarness& harness) {
+    if (harness.now() < t_cmd) return;
+    t_cmd = harness.now() + 10ms;
+    const double t = time::to_seconds(harness.now() - start);
+    const sim::WorldSnapshot& now = harness.sim().snapshot();
+    for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
+      std::vector<sim::RobotCommandFor> commands;
+      for (std::uint32_t id = 0; id < 6; ++id) {
+        const double phase = id + (team == TeamColor::kYellow ? 0.5 : 0);
+        const double k = static_cast<double>(id);
+        const Vec2 centre((team == TeamColor::kBlue ? -3.0 : 3.0) + (id % 2 == 0 ? -1.2 : 1.2), -3.0 + 1.2 * k);
+        const double ax = 1.8, ay = 0.5, wx = 0.55 + 0.05 * k, wy = 1.1 + 0.07 * k;
+        const Vec2 target = centre + Vec2(ax * std::sin(wx * t + phase), ay * std::sin(wy * t + 2 * phase));
+        const Vec2 feed_forward(ax * wx * std::cos(wx * t + phase), ay * wy * std::cos(wy * t + 2 * phase));
+        const sim::RobotState* robot = find_robot(now, team, id);
+        const Vec2 global = feed_forward + 3.0 * (target - robot->position);
+        const double c = std::cos(robot->orientation), s = std::sin(robot->orientation);
+        commands.push_back({id, local(c * global.x() + s * global.y(), -s * global.x() + c * global.y(),
+                                      2.0 * std::sin(0.7 * t + 2 * phase))});
+      }
+      harness.command(team, commands, team == TeamColor::kBlue);
+    }
+  };
+  h.run(8s, drive, [&](const sim::DetectionFrame& frame) {
+    if (time::to_seconds(frame.capture_time - start) < 1.0) return;  // robots converge onto their paths
+    const sim::WorldSnapshot& truth = h.truth(frame.capture_time);
+    const WorldState world = h.model().state_at_vision_time(frame.capture_time);
+    for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
+      const auto& detections = team == TeamColor::kBlue ? frame.robots_blue : frame.robots_yellow;
+      const auto& states = team == TeamColor::kBlue ? world.friendly : world.enemy;
+      for (const auto& d : detections) {
+        const sim::RobotState* r = find_robot(truth, team, d.robot_id);
+        const RobotState* s = find_state(states, d.robot_id);
+        ASSERT_NE(r, nullptr);
+        ASSERT_NE(s, nullptr);
+        (team == TeamColor::kBlue ? raw_pos : enemy_raw).add((Vec2(d.x, d.y) - r->position).norm());
+        (team == TeamColor::kBlue ? filt_pos : enemy_filt).add((s->position - r->position).norm());
+        if (team == TeamColor::kBlue) filt_vel.add((s->velocity - r->velocity).norm());
+      }
+    }
+  });
+  std::printf("[WorldModel] planner-driven robots (realistic, %zu samples): ours position RMS raw %.2f mm, filtered "
+              "%.2f mm (%.0f%% lower), velocity RMS %.3f m/s; enemies raw %.2f mm, filtered %.2f mm (%.0f%% lower)\n",
+              raw_pos.n, raw_pos.value() * 1e3, filt_pos.value() * 1e3, 100 * (1 - filt_pos.value() / raw_pos.value()),
+              filt_vel.value(), enemy_raw.value() * 1e3, enemy_filt.value() * 1e3,
+              100 * (1 - enemy_filt.value() / enemy_raw.value()));
+  EXPECT_GT(raw_pos.n, 1000u);
+  EXPECT_LE(filt_pos.value(), 0.5 * raw_pos.value());      // measured 56 % lower (seed 12)
+  EXPECT_LE(enemy_filt.value(), 0.8 * enemy_raw.value());  // measured 30 % lower: guard against regressions
 }
 
 // The ball slides and rolls across the field, stops, and a robot kicks it.
@@ -167,10 +226,100 @@ TEST(WorldModelAccuracy, BallPositionRmsAtLeastHalfOfRawWhileRollingAndKicked) {
               100 * (1 - filt_pos.value() / raw_pos.value()), filt_vel.value(), naive_vel.value(),
               static_cast<unsigned long long>(h.model().counters().kicks_detected));
   EXPECT_GT(raw_pos.n, 300u);
-  // Target >= 50% lower; measured 28% (seed 5). Guarded at 20%; see README "Not done".
-  EXPECT_LE(filt_pos.value(), 0.8 * raw_pos.value());
+  // The design's target: >= 50% lower (measured 66%, seed 5).
+  EXPECT_LE(filt_pos.value(), 0.5 * raw_pos.value());
   EXPECT_LE(filt_vel.value(), 0.5 * naive_vel.value());
   EXPECT_GE(h.model().counters().kicks_detected, 1u);
+}
+
+// Passes: three of our robots kick the ball to each other (2 to 5.5 m/s) past three standing enemies;
+// the ball bounces off robots and walls, slides, rolls and is kicked again, never for long on its own.
+TEST(WorldModelAccuracy, BallPositionRmsAtLeastHalfOfRawWhilePassedBetweenRobots) {
+  SimHarness h({.robots_per_team = 3, .seed = 21});
+  sim::ControlRequest setup;
+  setup.ball = sim::BallTeleport{.x = -2.0, .y = -1.0};
+  setup.robots.push_back({.key = {TeamColor::kBlue, 0}, .x = -2.25, .y = -1.0, .orientation = 0.0});
+  setup.robots.push_back({.key = {TeamColor::kBlue, 1}, .x = 1.0, .y = 1.2, .orientation = 3.14});
+  setup.robots.push_back({.key = {TeamColor::kBlue, 2}, .x = 1.5, .y = -2.0, .orientation = 2.0});
+  setup.robots.push_back({.key = {TeamColor::kYellow, 0}, .x = -0.5, .y = 0.13, .orientation = 0.0});
+  setup.robots.push_back({.key = {TeamColor::kYellow, 1}, .x = 1.3, .y = -0.3, .orientation = 1.0});
+  setup.robots.push_back({.key = {TeamColor::kYellow, 2}, .x = -0.3, .y = -1.65, .orientation = 2.0});
+  ASSERT_TRUE(h.sim().apply(setup).empty());
+  const time::Timestamp start = h.now();
+  const double kick_speeds[] = {4.0, 2.5, 5.5, 3.0, 4.5, 2.0};
+  bool kicking = false;
+  int kicks = 0, true_kicks = 0;
+  double last_kick = -10, previous_speed = 0;
+  auto all_blue = [](int kicker, double kick_speed) {
+    std::vector<sim::RobotCommandFor> commands;
+    for (std::uint32_t id = 0; id < 3; ++id) {
+      commands.push_back({id, static_cast<int>(id) == kicker ? local(0.6, 0, 0, kick_speed) : local(0, 0, 0)});
+    }
+    return commands;
+  };
+  // When the ball is slow (or 3 s after the last kick), the blue robot nearest to it is put 0.2 m behind
+  // it, facing a team mate, and drives into it with its kicker armed; it stops once the ball is away.
+  auto script = [&](SimHarness& harness) {
+    const double t = time::to_seconds(harness.now() - start);
+    const sim::WorldSnapshot& world = harness.sim().snapshot();
+    const Vec2 ball = world.ball.position.head<2>();
+    const double speed = world.ball.velocity.head<2>().norm();
+    if (speed > previous_speed + 1.0) ++true_kicks;  // within one 2 ms step: a kick
+    previous_speed = speed;
+    if (kicking && (speed > 1.0 || t - last_kick > 1.5)) {
+      kicking = false;
+      harness.command(TeamColor::kBlue, all_blue(-1, 0), true);
+    }
+    if (kicking || t - last_kick < 1.0 || (speed >= 0.15 && t - last_kick < 3.0)) return;
+    const sim::RobotState* kicker = nullptr;
+    for (const auto& r : world.robots) {
+      if (r.key.team == TeamColor::kBlue && (!kicker || (r.position - ball).norm() < (kicker->position - ball).norm())) {
+        kicker = &r;
+      }
+    }
+    const std::uint32_t target_id = (kicker->key.id + 1 + static_cast<std::uint32_t>(kicks % 2)) % 3;
+    const Vec2 dir = (find_robot(world, TeamColor::kBlue, target_id)->position - ball).normalized();
+    const Vec2 p = ball - 0.2 * dir;
+    const int kicker_id = static_cast<int>(kicker->key.id);
+    sim::ControlRequest place;
+    place.robots.push_back({.key = {TeamColor::kBlue, kicker->key.id}, .x = p.x(), .y = p.y(),
+                            .orientation = std::atan2(dir.y(), dir.x())});
+    harness.sim().apply(place);
+    harness.command(TeamColor::kBlue, all_blue(kicker_id, kick_speeds[kicks % 6]), true);
+    kicking = true;
+    last_kick = t;
+    ++kicks;
+  };
+  Rms raw_pos, filt_pos, filt_vel, naive_vel;
+  std::optional<std::pair<time::Timestamp, Vec2>> last_raw;
+  h.run(14s, script, [&](const sim::DetectionFrame& frame) {
+    if (time::to_seconds(frame.capture_time - start) < 0.3 || frame.balls.empty()) return;
+    const sim::WorldSnapshot& truth = h.truth(frame.capture_time);
+    const WorldState world = h.model().state_at_vision_time(frame.capture_time);
+    ASSERT_TRUE(world.has_ball);
+    const Vec2 true_ball = truth.ball.position.head<2>();
+    const Vec2 raw(frame.balls[0].x, frame.balls[0].y);
+    raw_pos.add((raw - true_ball).norm());
+    filt_pos.add((world.ball.position.head<2>() - true_ball).norm());
+    filt_vel.add((world.ball.velocity.head<2>() - truth.ball.velocity.head<2>()).norm());
+    if (last_raw) {
+      const double dt = time::to_seconds(frame.capture_time - last_raw->first);
+      if (dt > 0.005) naive_vel.add(((raw - last_raw->second) / dt - truth.ball.velocity.head<2>()).norm());
+    }
+    last_raw = {frame.capture_time, raw};
+  });
+  std::printf("[WorldModel] ball passed between robots (realistic, %d kicks, %zu samples): position RMS raw %.2f mm, "
+              "filtered %.2f mm (%.0f%% lower); velocity RMS filtered %.3f m/s vs raw finite difference %.3f m/s; "
+              "kicks detected %llu\n",
+              true_kicks, raw_pos.n, raw_pos.value() * 1e3, filt_pos.value() * 1e3,
+              100 * (1 - filt_pos.value() / raw_pos.value()), filt_vel.value(), naive_vel.value(),
+              static_cast<unsigned long long>(h.model().counters().kicks_detected));
+  EXPECT_GT(raw_pos.n, 1000u);
+  EXPECT_GE(true_kicks, 5);
+  // The design's target: >= 50% lower (measured 59%, seed 21; 56-59% over seeds 21-24).
+  EXPECT_LE(filt_pos.value(), 0.5 * raw_pos.value());
+  EXPECT_LE(filt_vel.value(), 0.5 * naive_vel.value());
+  EXPECT_GE(h.model().counters().kicks_detected, static_cast<std::uint64_t>(true_kicks));
 }
 
 TEST(WorldModelAccuracy, KickIsDetectedWithinThreeFramesWithSpeedAndDirection) {
@@ -291,6 +440,61 @@ TEST(WorldModelAccuracy, TwoCameraOverlapGivesOneTrackWithoutJitter) {
   EXPECT_EQ(h.model().counters().tracks_created, 2u);
   EXPECT_LT(max_step, 0.003);                       // below one raw sigma-norm (2.8 mm): no camera jitter
   EXPECT_LE(filtered.value(), 0.6 * raw.value());   // measured 49% lower (seed 4)
+}
+
+// Competition vision: each camera's calibration is 2 cm off, so a robot crossing the overlaps jumps between
+// the cameras' views. With the camera alignment on, the cameras' estimated errors are removed: the track
+// is smoother and closer to the consensus of the cameras.
+TEST(WorldModelAccuracy, CameraAlignmentRemovesTheJumpsBetweenMiscalibratedCameras) {
+  auto run = [](bool align) {
+    WorldModelConfig config;
+    config.align_cameras = align;
+    SimHarness h({.robots_per_team = 6, .realism = sim::RealismConfig::competition(), .seed = 4}, config);
+    time::Timestamp t_cmd;
+    const time::Timestamp start = h.now();
+    Rms step_jitter;
+    std::map<std::uint32_t, std::pair<Vec2, Vec2>> last;  // id -> filtered position, velocity
+    time::Timestamp last_capture;
+    auto drive = [&](SimHarness& harness) {
+      if (harness.now() < t_cmd) return;
+      t_cmd = harness.now() + 10ms;
+      const double t = time::to_seconds(harness.now() - start);
+      const sim::WorldSnapshot& now = harness.sim().snapshot();
+      std::vector<sim::RobotCommandFor> commands;
+      for (std::uint32_t id = 0; id < 6; ++id) {
+        // Slow ellipses across the centre, where the four cameras overlap.
+        const double k = static_cast<double>(id);
+        const Vec2 target(1.5 * std::cos(0.4 * t + k), 1.0 * std::sin(0.4 * t + k));
+        const Vec2 feed_forward(-0.6 * std::sin(0.4 * t + k), 0.4 * std::cos(0.4 * t + k));
+        const sim::RobotState* robot = find_robot(now, TeamColor::kBlue, id);
+        const Vec2 global = feed_forward + 3.0 * (target - robot->position);
+        const double c = std::cos(robot->orientation), s = std::sin(robot->orientation);
+        commands.push_back({id, local(c * global.x() + s * global.y(), -s * global.x() + c * global.y(), 0)});
+      }
+      harness.command(TeamColor::kBlue, commands, true);
+    };
+    h.run(20s, drive, [&](const sim::DetectionFrame& frame) {
+      if (time::to_seconds(frame.capture_time - start) < 10.0) return;  // calibrated by then
+      const WorldState world = h.model().state_at_vision_time(frame.capture_time);
+      const double dt = time::to_seconds(frame.capture_time - last_capture);
+      for (const RobotState& r : world.friendly) {
+        // Jitter: the change of the filtered position beyond what its velocity explains, per frame.
+        auto it = last.find(r.id);
+        if (it != last.end() && dt > 0 && dt < 0.02) {
+          step_jitter.add((r.position - it->second.first - it->second.second * dt).norm());
+        }
+        last[r.id] = {r.position, r.velocity};
+      }
+      last_capture = frame.capture_time;
+    });
+    return std::make_pair(step_jitter.value(), h.model().camera_alignment().offset(0).calibrated);
+  };
+  const auto [without, calibrated_without] = run(false);
+  const auto [with, calibrated_with] = run(true);
+  std::printf("[WorldModel] competition vision (2 cm calibration errors): frame-to-frame step RMS of our tracks "
+              "%.2f mm without camera alignment, %.2f mm with\n", without * 1e3, with * 1e3);
+  EXPECT_TRUE(calibrated_with);
+  EXPECT_LT(with, 0.8 * without);
 }
 
 }  // namespace
