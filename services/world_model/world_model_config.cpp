@@ -85,6 +85,8 @@ Fields<CameraAlignmentParams> camera_alignment_fields() {
 
 Fields<WorldModelConfig> core_fields() {
   return {
+      field("chip_window", &WorldModelConfig::chip_window).unit("s").range(0.1, 10)
+          .doc("after a kick, how long a chip flight is looked for and tracked"),
       field("align_cameras", &WorldModelConfig::align_cameras)
           .doc("estimate each camera's calibration error from objects seen by two cameras"),
       nested("camera_alignment", &WorldModelConfig::camera_alignment, camera_alignment_fields()),

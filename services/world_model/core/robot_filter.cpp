@@ -182,8 +182,15 @@ void RobotFilter::predict_to(Filter& filter, time::Timestamp from, time::Timesta
 
 RobotFilter::State RobotFilter::predict_state(time::Timestamp t) const {
   if (t > time_) {
+    // The mean only (no covariance): state() asks this for every robot on every publish.
     Filter copy = filter_;
-    predict_to(copy, time_, t);
+    for (time::Timestamp from = time_; from < t;) {
+      const time::Timestamp until = next_command_change(from, t);
+      set_prediction(copy, time::to_seconds(until - from), command_at(from));
+      copy.mutable_state() = copy.F * copy.state() + copy.u;
+      copy.mutable_state()(2) = wrap(copy.state()(2));
+      from = until;
+    }
     return copy.state();
   }
   State x = filter_.state();

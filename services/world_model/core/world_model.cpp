@@ -25,6 +25,7 @@ time::Timestamp WorldModel::to_vision(time::Timestamp now) const {
 void WorldModel::on_geometry(const Geometry& geometry) {
   field_ = Field(geometry.field);
   alignment_.set_camera_centers(geometry.cameras);
+  cameras_ = geometry.cameras;
   if (geometry.ball_model) ball_.set_model(*geometry.ball_model);
 }
 
@@ -156,7 +157,10 @@ void WorldModel::update_ball(std::uint32_t camera_id, std::span<const BallDetect
     }
     BallDetection detection = raw;
     if (config_.align_cameras) detection.position = alignment_.correct(camera_id, raw.position);
-    const double d2 = ball_.distance2(detection.position, t);
+    // In a reconstructed flight, compare with where this camera sees the flying ball.
+    const std::optional<Vec2> flying = chip_projection(camera_id, t);
+    const double d2 = flying ? (detection.position - *flying).squaredNorm() / 1e-4
+                             : ball_.distance2(detection.position, t);
     if (d2 < best_d2) {
       if (best) ++counters_.outliers_rejected;
       best = detection;
@@ -174,6 +178,7 @@ void WorldModel::update_ball(std::uint32_t camera_id, std::span<const BallDetect
     return;
   }
   if (!best) return;
+  if (track_chip(camera_id, best->position, t)) return;  // airborne: the ground filter waits for the landing
 
   bool near_robot = false;
   for (const TeamTracks& team_tracks : tracks_) {
@@ -188,8 +193,81 @@ void WorldModel::update_ball(std::uint32_t camera_id, std::span<const BallDetect
     case BallFilter::UpdateResult::kFused: break;
     case BallFilter::UpdateResult::kOutlier: ++counters_.outliers_rejected; break;
     case BallFilter::UpdateResult::kRestarted: ++counters_.ball_restarts; break;
-    case BallFilter::UpdateResult::kKick: ++counters_.kicks_detected; break;
+    case BallFilter::UpdateResult::kKick:
+      ++counters_.kicks_detected;
+      start_chip_tracking();
+      break;
   }
+}
+
+void WorldModel::start_chip_tracking() {
+  const std::optional<KickEvent>& kick = ball_.last_kick();
+  if (!kick) return;
+  ChipKick prior{.position = kick->position, .time = kick->time};
+  // The kicker's heading is the chip's horizontal direction (the post-kick detections are projections
+  // of a flying ball, so their direction can be off).
+  double nearest = config_.robot_radius + 0.15;
+  for (const TeamTracks& team_tracks : tracks_) {
+    for (const Track& track : team_tracks) {
+      if (!track) continue;
+      const RobotFilter::State x = track->predict_state(kick->time);
+      const double distance = (x.head<2>() - kick->position).norm();
+      if (distance < nearest) {
+        nearest = distance;
+        prior.direction = Vec2(std::cos(x(2)), std::sin(x(2)));
+      }
+    }
+  }
+  chip_.estimator.reset(prior);
+  chip_.active = true;
+  chip_.latched = false;
+  chip_.fit.reset();
+  chip_.kick_time = kick->time;
+}
+
+std::optional<Vec2> WorldModel::chip_projection(std::uint32_t camera_id, time::Timestamp t) const {
+  if (!chip_.latched || !chip_.fit || t >= chip_.fit->landing_time) return std::nullopt;
+  const Vec3* camera = camera_position(camera_id);
+  if (camera == nullptr) return std::nullopt;
+  // SSL-Vision reports where the ray from the camera through the ball meets the plane z = ball radius.
+  const Vec3 ball = chip_.fit->position_at(t);
+  const double radius = field_.size().ball_radius;
+  const double scale = (camera->z() - radius) / std::max(camera->z() - ball.z(), 1e-3);
+  return Vec2(camera->x() + (ball.x() - camera->x()) * scale, camera->y() + (ball.y() - camera->y()) * scale);
+}
+
+bool WorldModel::track_chip(std::uint32_t camera_id, const Vec2& detection, time::Timestamp t) {
+  if (!chip_.active) return false;
+  if (seconds(t - chip_.kick_time) > config_.chip_window) {
+    chip_.active = false;  // never classified, or the flight is over: the ground filter has the ball
+    return false;
+  }
+  if (const Vec3* camera = camera_position(camera_id)) {
+    chip_.estimator.add({.detection = detection, .camera = *camera, .t_capture = t});
+  }
+  if (!chip_.latched) {
+    const ChipClassification result = chip_.estimator.classify();
+    if (!result.is_chip || !result.chip) return false;
+    chip_.latched = true;  // near the threshold the decision may flip back: keep the first one
+    ++counters_.chips_detected;
+  }
+  if (const std::optional<ChipFit> fit = chip_.estimator.fit()) chip_.fit = fit;
+  if (!chip_.fit) return false;
+  chip_.last_update = t;
+  // Landed once past the touchdown by more than its uncertainty (an early fit may still move it).
+  if (t < chip_.fit->landing_time + time::duration_from_seconds(3 * chip_.fit->landing_time_stddev)) return true;
+  // Landed: the ground filter takes over where and how fast the reconstructed flight says.
+  const ChipState landed = chip_.fit->state_at(t);
+  ball_.place(landed.position.head<2>(), landed.velocity.head<2>(), t);
+  chip_.active = false;
+  return true;
+}
+
+const Vec3* WorldModel::camera_position(std::uint32_t camera_id) const {
+  for (const CameraInfo& camera : cameras_) {
+    if (camera.camera_id == camera_id) return &camera.position;
+  }
+  return nullptr;
 }
 
 void WorldModel::update_possession(time::Timestamp t) {
@@ -315,6 +393,18 @@ WorldState WorldModel::state_at_vision_time(time::Timestamp t) const {
       world.ball.visible = age <= config_.visible_timeout;
       world.ball.confidence = std::clamp(1.0 - age / config_.ball_lost_timeout, 0.0, 1.0);
       world.ball.last_seen = ball_.last_update();
+      if (chip_.active && chip_.latched && chip_.fit) {
+        const ChipState flying = chip_.fit->state_at(t);
+        world.ball.position = Vec3(frame_.point(flying.position.head<2>()).x(),
+                                   frame_.point(flying.position.head<2>()).y(), flying.position.z());
+        const Vec2 flying_velocity = frame_.vector(flying.velocity.head<2>());
+        world.ball.velocity = Vec3(flying_velocity.x(), flying_velocity.y(), flying.velocity.z());
+        world.ball.airborne = flying.position.z() > field_.size().ball_radius + 1e-3;
+        world.ball.in_dribbler = false;
+        const double flight_age = std::max(0.0, seconds(stamp_.capture_time - chip_.last_update));
+        world.ball.visible = flight_age <= config_.visible_timeout;
+        world.ball.last_seen = chip_.last_update;
+      }
     }
   }
   return world;

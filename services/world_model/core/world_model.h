@@ -22,9 +22,11 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "services/world_model/core/ball_filter.h"
 #include "services/world_model/core/camera_alignment.h"
+#include "services/world_model/core/chip_estimator.h"
 #include "services/world_model/core/field.h"
 #include "services/world_model/core/game_state.h"
 #include "services/world_model/core/robot_filter.h"
@@ -51,6 +53,7 @@ struct WorldModelConfig {
                                         // wall) may be pushed: their filters do not trust the commands
   double dribbler_capture_distance = 0.1;  // m: a detection this close to a holding dribbler is used
   double offset_drift = 1e-5;           // s per frame the clock offset estimate may rise
+  double chip_window = 1.5;             // s after a kick during which a chip flight is looked for/tracked
   bool align_cameras = true;            // estimate and correct each camera's calibration error
   // Translation only by default: with well calibrated cameras the scale and rotation estimates add about
   // 1 mm of wandering correction (measured), more than they remove; enable them for a field whose camera
@@ -76,6 +79,7 @@ struct WorldModelCounters {
   std::uint64_t kicks_detected = 0;
   std::uint64_t ball_restarts = 0;
   std::uint64_t dribbler_placements = 0;
+  std::uint64_t chips_detected = 0;
 };
 
 class WorldModel {
@@ -125,6 +129,24 @@ class WorldModel {
   void drop_lost_tracks(time::Timestamp t);
   std::optional<Vec2> held_ball_position(time::Timestamp t, std::uint32_t* holder, Vec2* velocity) const;
   Vec2 dribbler_point(const RobotFilter::State& x) const;
+  void start_chip_tracking();
+  /// Feeds a ball detection to the chip reconstruction; true while the ball is airborne (the ground
+  /// filter must not take it), false otherwise.
+  bool track_chip(std::uint32_t camera_id, const Vec2& detection, time::Timestamp t);
+  /// Where camera `camera_id` sees the reconstructed flying ball at t, when one is in the air.
+  std::optional<Vec2> chip_projection(std::uint32_t camera_id, time::Timestamp t) const;
+  const Vec3* camera_position(std::uint32_t camera_id) const;
+
+  // A chip flight after a kick: detections after the kick go to the estimator; once it says "chip" the
+  // flight (3D) is the ball until it lands, then the ground filter continues from the landing.
+  struct ChipTrack {
+    ChipEstimator estimator;
+    bool active = false;   // within chip_window after a kick
+    bool latched = false;  // classified as a chip
+    std::optional<ChipFit> fit;
+    time::Timestamp kick_time;
+    time::Timestamp last_update;
+  };
   time::Timestamp to_vision(time::Timestamp now) const;
 
   WorldModelConfig config_;
@@ -134,6 +156,8 @@ class WorldModel {
   std::array<TeamTracks, 2> tracks_;  // blue, yellow
   BallFilter ball_;
   CameraAlignment alignment_;
+  ChipTrack chip_;
+  std::vector<CameraInfo> cameras_;  // from the geometry: camera centres for the chip reconstruction
   std::array<bool, kMaxRobotsPerTeam> ball_in_dribbler_{};
   std::array<time::Timestamp, kMaxRobotsPerTeam> feedback_time_{};                        // host clock
   std::optional<double> offset_;
