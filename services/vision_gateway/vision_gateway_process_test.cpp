@@ -278,6 +278,7 @@ TEST(VisionGatewayProcess, GarbageAndForeignSendersAreCountedWhilePublishingGoes
   ASSERT_TRUE(sender) << sender.error().message;
   std::mt19937 random(11);
   constexpr int kGarbage = 300;
+  const auto burst_start = std::chrono::steady_clock::now();
   for (int i = 0; i < kGarbage; ++i) {
     std::vector<std::uint8_t> bytes(1 + random() % 200);
     for (auto& byte : bytes) byte = static_cast<std::uint8_t>(random() | 0x80);  // unterminated varints
@@ -285,6 +286,8 @@ TEST(VisionGatewayProcess, GarbageAndForeignSendersAreCountedWhilePublishingGoes
     // Paced, so that the burst never overflows the gateway's socket buffer (an exact count is checked).
     std::this_thread::sleep_for(milliseconds(1));
   }
+  const double burst_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - burst_start).count();
   // Valid packets from another sender (this test): a stray vision source.
   constexpr int kForeign = 20;
   for (int i = 0; i < kForeign; ++i) {
@@ -318,13 +321,15 @@ TEST(VisionGatewayProcess, GarbageAndForeignSendersAreCountedWhilePublishingGoes
   EXPECT_TRUE(later);
 
   stop(gateway);
-  // Malformed packets are logged at a throttled rate: a burst of 300 gives one or two lines, not 300.
+  // Malformed packets are logged at a throttled rate (one line per second): a burst of 300 gives a line per
+  // started second of the burst (0.3 s on a quiet machine, longer when it is loaded) plus the summary.
   int malformed_lines = 0;
   while (auto line = gateway.read_line(milliseconds(100))) {
     if (line->find("malformed vision packet") != std::string::npos) ++malformed_lines;
   }
   EXPECT_GE(malformed_lines, 1);
-  EXPECT_LE(malformed_lines, 3);
+  EXPECT_LE(malformed_lines, static_cast<int>(std::ceil(burst_seconds)) + 2) << "burst took " << burst_seconds << " s";
+  EXPECT_LT(malformed_lines, kGarbage / 10);
   stop(simulator);
 }
 
