@@ -109,6 +109,8 @@ idl::world::WorldState to_idl(const WorldState& in, std::uint64_t sequence_numbe
   ball.visible(in.ball.visible);
   ball.confidence(in.ball.confidence);
   ball.last_seen_unix_ns(in.ball.last_seen.nanoseconds());
+  ball.in_dribbler(in.ball.in_dribbler);
+  ball.airborne(in.ball.airborne);
   auto robots = [](const std::vector<RobotState>& from, std::vector<idl::world::RobotState>& to) {
     to.reserve(from.size());
     for (const RobotState& r : from) {

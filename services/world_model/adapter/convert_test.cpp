@@ -67,7 +67,8 @@ TEST(WorldModelConvert, WorldStateCarriesStampTeamAndPossession) {
   in.stamp.capture_time = time::Timestamp::from_nanoseconds(42);
   in.stamp.camera_id = 3;
   in.has_ball = true;
-  in.ball.position = Vec3(1, 2, 0.02);
+  in.ball.position = Vec3(1, 2, 0.3);
+  in.ball.airborne = true;
   in.friendly.push_back({.id = 4, .position = Vec2(-1, 0), .orientation = 0.5});
   in.possession = Possession::kEnemy;
   in.possessing_robot = 7;
@@ -77,6 +78,9 @@ TEST(WorldModelConvert, WorldStateCarriesStampTeamAndPossession) {
   EXPECT_EQ(out.stamp().capture_unix_ns(), 42);
   EXPECT_EQ(out.stamp().camera_id(), 3u);
   EXPECT_DOUBLE_EQ(out.ball().position().y(), 2);
+  EXPECT_DOUBLE_EQ(out.ball().position().z(), 0.3);
+  EXPECT_TRUE(out.ball().airborne());
+  EXPECT_FALSE(out.ball().in_dribbler());
   ASSERT_EQ(out.friendly().size(), 1u);
   EXPECT_DOUBLE_EQ(out.friendly()[0].pose().theta(), 0.5);
   EXPECT_EQ(out.possession(), idl::world::POSSESSION_ENEMY);
