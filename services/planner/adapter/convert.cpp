@@ -1,0 +1,278 @@
+#include "services/planner/adapter/convert.h"
+
+#include <cmath>
+#include <string>
+
+namespace ssl::planner {
+namespace {
+
+time::Timestamp ts(std::int64_t unix_ns) { return time::Timestamp::from_nanoseconds(unix_ns); }
+
+bool finite(std::initializer_list<double> values) {
+  for (const double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
+
+Error not_finite(const std::string& what) { return Error{what + " is not a finite number"}; }
+
+Result<std::vector<wm::RobotState>> robots_from_idl(const std::vector<idl::world::RobotState>& in,
+                                                    const char* side) {
+  std::vector<wm::RobotState> out;
+  out.reserve(in.size());
+  for (const auto& r : in) {
+    const std::string name = std::string("world.state ") + side + " robot " + std::to_string(r.id());
+    if (r.id() >= wm::kMaxRobotsPerTeam) {
+      return Error{std::string("world.state ") + side + " robot id " + std::to_string(r.id()) +
+                   " is out of range 0.." + std::to_string(wm::kMaxRobotsPerTeam - 1)};
+    }
+    if (!finite({r.pose().x(), r.pose().y(), r.pose().theta()})) return not_finite(name + " pose");
+    if (!finite({r.velocity().x(), r.velocity().y(), r.angular_velocity()})) return not_finite(name + " velocity");
+    if (!std::isfinite(r.confidence())) return not_finite(name + " confidence");
+    out.push_back({.id = r.id(),
+                   .position = wm::Vec2(r.pose().x(), r.pose().y()),
+                   .orientation = r.pose().theta(),
+                   .velocity = wm::Vec2(r.velocity().x(), r.velocity().y()),
+                   .angular_velocity = r.angular_velocity(),
+                   .visible = r.visible(),
+                   .confidence = r.confidence()});
+  }
+  return out;
+}
+
+std::optional<TeamColor> team_from_idl(idl::common::TeamColor team) {
+  switch (team) {
+    case idl::common::TEAM_COLOR_BLUE: return TeamColor::kBlue;
+    case idl::common::TEAM_COLOR_YELLOW: return TeamColor::kYellow;
+    default: return std::nullopt;
+  }
+}
+
+bool positive(double v) { return std::isfinite(v) && v > 0; }
+
+}  // namespace
+
+Result<wm::WorldState> from_idl(const idl::world::WorldState& in) {
+  wm::WorldState out;
+  const auto team = team_from_idl(in.team());
+  if (!team) return Error{"world.state team is neither blue nor yellow"};
+  out.team = *team;
+  out.stamp.capture_time = ts(in.stamp().capture_unix_ns());
+  out.stamp.receive_time = ts(in.stamp().receive_unix_ns());
+  out.stamp.camera_id = in.stamp().camera_id();
+  out.stamp.frame_number = in.stamp().frame_number();
+  out.predicted_to = ts(in.publish_unix_ns());
+  out.has_ball = in.has_ball();
+  if (in.has_ball()) {
+    const auto& b = in.ball();
+    if (!finite({b.position().x(), b.position().y(), b.position().z()})) return not_finite("world.state ball position");
+    if (!finite({b.velocity().x(), b.velocity().y(), b.velocity().z()})) return not_finite("world.state ball velocity");
+    if (!std::isfinite(b.confidence())) return not_finite("world.state ball confidence");
+    out.ball.position = wm::Vec3(b.position().x(), b.position().y(), b.position().z());
+    out.ball.velocity = wm::Vec3(b.velocity().x(), b.velocity().y(), b.velocity().z());
+    out.ball.visible = b.visible();
+    out.ball.confidence = b.confidence();
+    out.ball.last_seen = ts(b.last_seen_unix_ns());
+    out.ball.airborne = b.airborne();
+    out.ball.in_dribbler = b.in_dribbler();
+  }
+  auto friendly = robots_from_idl(in.friendly(), "friendly");
+  if (!friendly) return friendly.error();
+  out.friendly = std::move(*friendly);
+  auto enemy = robots_from_idl(in.enemy(), "enemy");
+  if (!enemy) return enemy.error();
+  out.enemy = std::move(*enemy);
+  switch (in.possession()) {
+    case idl::world::POSSESSION_NONE: out.possession = wm::Possession::kNone; break;
+    case idl::world::POSSESSION_FRIENDLY: out.possession = wm::Possession::kFriendly; break;
+    case idl::world::POSSESSION_ENEMY: out.possession = wm::Possession::kEnemy; break;
+    case idl::world::POSSESSION_CONTESTED: out.possession = wm::Possession::kContested; break;
+    default: return Error{"world.state possession has an unknown value " + std::to_string(in.possession())};
+  }
+  if (in.has_possessing_robot()) {
+    if (in.possessing_robot() >= wm::kMaxRobotsPerTeam) {
+      return Error{"world.state possessing_robot " + std::to_string(in.possessing_robot()) + " is out of range"};
+    }
+    out.possessing_robot = in.possessing_robot();
+  }
+  return out;
+}
+
+std::optional<wm::RefereeCommand> command_from_idl(idl::referee::Command command) {
+  using C = wm::RefereeCommand;
+  namespace r = idl::referee;
+  switch (command) {
+    case r::COMMAND_HALT: return C::kHalt;
+    case r::COMMAND_STOP: return C::kStop;
+    case r::COMMAND_NORMAL_START: return C::kNormalStart;
+    case r::COMMAND_FORCE_START: return C::kForceStart;
+    case r::COMMAND_PREPARE_KICKOFF_YELLOW: return C::kPrepareKickoffYellow;
+    case r::COMMAND_PREPARE_KICKOFF_BLUE: return C::kPrepareKickoffBlue;
+    case r::COMMAND_PREPARE_PENALTY_YELLOW: return C::kPreparePenaltyYellow;
+    case r::COMMAND_PREPARE_PENALTY_BLUE: return C::kPreparePenaltyBlue;
+    case r::COMMAND_DIRECT_FREE_YELLOW: return C::kDirectFreeYellow;
+    case r::COMMAND_DIRECT_FREE_BLUE: return C::kDirectFreeBlue;
+    case r::COMMAND_INDIRECT_FREE_YELLOW: return C::kIndirectFreeYellow;
+    case r::COMMAND_INDIRECT_FREE_BLUE: return C::kIndirectFreeBlue;
+    case r::COMMAND_TIMEOUT_YELLOW: return C::kTimeoutYellow;
+    case r::COMMAND_TIMEOUT_BLUE: return C::kTimeoutBlue;
+    case r::COMMAND_GOAL_YELLOW: return C::kGoalYellow;
+    case r::COMMAND_GOAL_BLUE: return C::kGoalBlue;
+    case r::COMMAND_BALL_PLACEMENT_YELLOW: return C::kBallPlacementYellow;
+    case r::COMMAND_BALL_PLACEMENT_BLUE: return C::kBallPlacementBlue;
+  }
+  return std::nullopt;
+}
+
+Result<RefereeInput> from_idl(const idl::referee::RefereeState& in, TeamColor our_team) {
+  RefereeInput out;
+  const auto command = command_from_idl(in.command());
+  if (!command) return Error{"referee.state command has an unknown value " + std::to_string(in.command())};
+  out.info.command = *command;
+  out.info.command_counter = in.command_counter();
+  if (in.has_blue_team_on_positive_half()) out.info.blue_team_on_positive_half = in.blue_team_on_positive_half();
+  if (in.has_designated_position()) {
+    const auto& p = in.designated_position();
+    if (!finite({p.x(), p.y()})) return not_finite("referee.state designated_position");
+    out.info.designated_position = wm::Vec2(p.x(), p.y());
+  }
+  if (in.has_next_command()) {
+    const auto next = command_from_idl(in.next_command());
+    if (!next) return Error{"referee.state next_command has an unknown value " + std::to_string(in.next_command())};
+    out.info.next_command = *next;
+  }
+  out.info.yellow_goalkeeper = in.yellow().goalkeeper();
+  out.info.blue_goalkeeper = in.blue().goalkeeper();
+  const auto& ours = our_team == TeamColor::kBlue ? in.blue() : in.yellow();
+  out.our_can_place_ball = ours.can_place_ball();
+  out.our_max_allowed_bots = ours.max_allowed_bots();
+  return out;
+}
+
+Result<wm::FieldSize> from_idl(const idl::vision::Geometry& in) {
+  const auto& f = in.field();
+  const std::pair<const char*, double> required[] = {
+      {"field_length", f.field_length()},
+      {"field_width", f.field_width()},
+      {"goal_width", f.goal_width()},
+      {"goal_depth", f.goal_depth()},
+      {"penalty_area_depth", f.penalty_area_depth()},
+      {"penalty_area_width", f.penalty_area_width()},
+      {"center_circle_radius", f.center_circle_radius()},
+      {"goal_center_to_penalty_mark", f.goal_center_to_penalty_mark()},
+  };
+  for (const auto& [name, value] : required) {
+    if (!positive(value)) {
+      return Error{std::string("vision.geometry field.") + name + " = " + std::to_string(value) +
+                   " is not a positive finite length"};
+    }
+  }
+  const std::pair<const char*, double> optional[] = {{"boundary_width", f.boundary_width()},
+                                                     {"ball_radius", f.ball_radius()},
+                                                     {"max_robot_radius", f.max_robot_radius()}};
+  for (const auto& [name, value] : optional) {
+    if (!std::isfinite(value) || value < 0) {
+      return Error{std::string("vision.geometry field.") + name + " = " + std::to_string(value) +
+                   " is not a finite non-negative length"};
+    }
+  }
+  return wm::FieldSize{.field_length = f.field_length(),
+                       .field_width = f.field_width(),
+                       .goal_width = f.goal_width(),
+                       .goal_depth = f.goal_depth(),
+                       .boundary_width = f.boundary_width(),
+                       .penalty_area_depth = f.penalty_area_depth(),
+                       .penalty_area_width = f.penalty_area_width(),
+                       .center_circle_radius = f.center_circle_radius(),
+                       .goal_center_to_penalty_mark = f.goal_center_to_penalty_mark(),
+                       .ball_radius = f.ball_radius() > 0 ? f.ball_radius() : 0.0215,
+                       .max_robot_radius = f.max_robot_radius() > 0 ? f.max_robot_radius() : 0.09};
+}
+
+idl::common::TeamColor to_idl(TeamColor team) {
+  return team == TeamColor::kBlue ? idl::common::TEAM_COLOR_BLUE : idl::common::TEAM_COLOR_YELLOW;
+}
+
+idl::robot::KickType to_idl(KickType kick) {
+  switch (kick) {
+    case KickType::kFlat: return idl::robot::KICK_FLAT;
+    case KickType::kChip: return idl::robot::KICK_CHIP;
+    case KickType::kNone: break;
+  }
+  return idl::robot::KICK_NONE;
+}
+
+idl::robot::RobotCommand to_idl(const RobotCommand& in, std::uint64_t* non_finite) {
+  idl::robot::RobotCommand out;
+  out.id(in.id);
+  if (!finite({in.forward, in.left, in.angular, in.kick_speed, in.chip_angle, in.dribbler_rpm})) {
+    if (non_finite != nullptr) ++*non_finite;
+    out.kick(idl::robot::KICK_NONE);
+    return out;  // every number 0: a full stop
+  }
+  out.forward(in.forward);
+  out.left(in.left);
+  out.angular(in.angular);
+  out.kick(to_idl(in.kick));
+  out.kick_speed(in.kick_speed);
+  out.chip_angle(in.chip_angle);
+  out.dribbler_rpm(in.dribbler_rpm);
+  return out;
+}
+
+idl::robot::RobotCommands to_idl(const std::vector<RobotCommand>& commands, TeamColor team,
+                                 const idl::common::VisionStamp& stamp, std::uint64_t sequence_number,
+                                 std::int64_t publish_unix_ns, std::uint64_t* non_finite) {
+  idl::robot::RobotCommands out;
+  out.team(to_idl(team));
+  out.sequence_number(sequence_number);
+  out.stamp(stamp);
+  out.publish_unix_ns(publish_unix_ns);
+  out.commands().reserve(commands.size());
+  for (const RobotCommand& c : commands) out.commands().push_back(to_idl(c, non_finite));
+  return out;
+}
+
+idl::planner::PlannerDebug to_idl(const PlannerOutput& in, TeamColor team, const idl::common::VisionStamp& stamp,
+                                  double tick_duration) {
+  idl::planner::PlannerDebug out;
+  out.team(to_idl(team));
+  out.tick(in.tick);
+  out.stamp(stamp);
+  out.play(in.play);
+  out.roles().reserve(in.roles.size());
+  out.paths().reserve(in.roles.size());
+  for (const RoleInfo& r : in.roles) {
+    idl::planner::RoleAssignment role;
+    role.robot_id(r.robot_id);
+    role.role(r.role);
+    role.tactic(r.tactic);
+    role.skill(r.skill);
+    out.roles().push_back(std::move(role));
+    if (std::isfinite(r.target.x()) && std::isfinite(r.target.y())) {
+      idl::planner::PlannedPath path;
+      path.robot_id(r.robot_id);
+      path.destination().x(r.target.x());
+      path.destination().y(r.target.y());
+      out.paths().push_back(std::move(path));
+    }
+  }
+  out.tree().reserve(in.tree.size());
+  for (const TreeNodeInfo& n : in.tree) {
+    idl::planner::TreeNode node;
+    node.name(n.name);
+    node.depth(n.depth);
+    switch (n.status) {
+      case TreeNodeInfo::Status::kIdle: node.status(idl::planner::NODE_STATUS_IDLE); break;
+      case TreeNodeInfo::Status::kRunning: node.status(idl::planner::NODE_STATUS_RUNNING); break;
+      case TreeNodeInfo::Status::kSuccess: node.status(idl::planner::NODE_STATUS_SUCCESS); break;
+      case TreeNodeInfo::Status::kFailure: node.status(idl::planner::NODE_STATUS_FAILURE); break;
+    }
+    out.tree().push_back(std::move(node));
+  }
+  out.tick_duration(tick_duration);
+  return out;
+}
+
+}  // namespace ssl::planner

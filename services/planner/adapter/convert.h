@@ -1,0 +1,64 @@
+// Conversions between the IDL samples of the planner's topics and the planner core's types, done once at
+// the boundary. world.state arrives in the TEAM frame and stays in it; referee.state positions stay in the
+// VISION frame (the core resolves sides from blue_team_on_positive_half); times go from Unix ns to
+// ssl::time::Timestamp on the same clock. Inputs with a NaN or infinite number, an unknown enum value or
+// an impossible robot id are REJECTED (an Error naming the field) so that the node counts them and never
+// passes them on. Outputs (commands) with a non-finite number are replaced by a stop and counted.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "idl/planner.h"
+#include "idl/referee.h"
+#include "idl/robot.h"
+#include "idl/vision.h"
+#include "idl/world.h"
+#include "libs/common/result.h"
+#include "libs/common/team.h"
+#include "services/planner/core/planner.h"
+
+namespace ssl::planner {
+
+// ---- inputs ---------------------------------------------------------------------------------------------
+
+/// world.state (team frame) -> the core's WorldState. The IDL carries no prediction instant: predicted_to is
+/// the sample's publish time (world_model predicts to it).
+Result<wm::WorldState> from_idl(const idl::world::WorldState& in);
+
+/// The league's command by NAME (the IDL order is the league's; the core's enum follows it too). nullopt
+/// for a value outside the IDL enum (a corrupt sample).
+std::optional<wm::RefereeCommand> command_from_idl(idl::referee::Command command);
+
+/// referee.state -> what the planner uses: command, counter, sides, designated position (m, vision frame),
+/// next command, both goalkeepers, and OUR team's can_place_ball / max_allowed_bots.
+Result<RefereeInput> from_idl(const idl::referee::RefereeState& in, TeamColor our_team);
+
+/// vision.geometry's field -> FieldSize (m). An error when a dimension is missing, non-positive or not
+/// finite (the node keeps the previous or the configured field). ball_radius and max_robot_radius default
+/// to 0.0215 m and 0.09 m when not sent.
+Result<wm::FieldSize> from_idl(const idl::vision::Geometry& in);
+
+// ---- outputs --------------------------------------------------------------------------------------------
+
+idl::common::TeamColor to_idl(TeamColor team);
+idl::robot::KickType to_idl(KickType kick);
+
+/// One command. A command with a non-finite number becomes a full stop (kick and dribbler off) and
+/// `non_finite` (when given) is incremented.
+idl::robot::RobotCommand to_idl(const RobotCommand& in, std::uint64_t* non_finite = nullptr);
+
+/// robot.commands for one tick: `stamp` is the VisionStamp of the world state the commands were computed
+/// from (passed through unchanged), `sequence_number` the planner's sample counter, `publish_unix_ns` the
+/// planner host's wall clock at publish time.
+idl::robot::RobotCommands to_idl(const std::vector<RobotCommand>& commands, TeamColor team,
+                                 const idl::common::VisionStamp& stamp, std::uint64_t sequence_number,
+                                 std::int64_t publish_unix_ns, std::uint64_t* non_finite = nullptr);
+
+/// planner.debug for one tick. Each role's target becomes a PlannedPath with that destination and no
+/// intermediate points; `tick_duration` is the time spent in the core's step (s).
+idl::planner::PlannerDebug to_idl(const PlannerOutput& in, TeamColor team, const idl::common::VisionStamp& stamp,
+                                  double tick_duration);
+
+}  // namespace ssl::planner

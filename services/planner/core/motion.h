@@ -1,0 +1,96 @@
+// Motion intents and the skill layer that turns them into velocity commands.
+//
+// A tree action decides WHAT a robot should do (go there, facing that way, at most this fast, keeping
+// clear of these zones, dribbling or kicking) and writes it as a MotionIntent; a MotionPlanner decides HOW
+// (the velocity to send now). Planner I uses SimpleMotionPlanner: a proportional approach with speed and
+// acceleration limits, heading control, targets pushed out of forbidden zones and a local detour around
+// them. Planner II replaces it with a trajectory planner behind the same interface.
+//
+//   SimpleMotionPlanner motion(limits);
+//   RobotCommand command = motion.plan(robot, intent, zones_context, dt);
+//
+// All positions here are in the TEAM frame; commands come out in the robot's LOCAL frame.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "services/planner/core/planner.h"
+#include "services/world_model/core/field.h"
+#include "services/world_model/core/types.h"
+
+namespace ssl::planner {
+
+/// What one robot should do this tick (TEAM frame). Names are string literals (no allocation).
+struct MotionIntent {
+  bool active = false;                    // false: no intent (the robot is stopped)
+  bool halt = false;                      // zero velocity now, whatever else is set
+  Vec2 target = Vec2::Zero();             // m
+  double orientation = 0;                 // rad, heading at the target
+  double max_speed = 3.0;                 // m/s
+  double avoid_ball_radius = 0;           // m, robot centre keeps this far from the ball; 0: may touch it
+  bool avoid_placement_corridor = false;  // keep out of the ball -> designated position stadium
+  bool avoid_their_defense_area = true;   // keep the rule distance (+ margin) from their defense area
+  bool avoid_our_defense_area = true;     // false only for the goalkeeper
+  bool dribble = false;
+  KickType kick = KickType::kNone;  // armed: the kicker fires when the ball touches it
+  double kick_speed = 0;            // m/s
+  std::string_view role = "idle";
+  std::string_view tactic = "none";
+  std::string_view skill = "move_to";
+};
+
+/// Where robots must not go this tick (TEAM frame), as the rules and the current command say.
+struct Zones {
+  wm::Field field = wm::Field();
+  std::optional<Vec2> ball;
+  std::optional<Vec2> placement_target;  // designated position: the corridor is ball -> it
+  double placement_corridor_radius = 0;  // m, robot centre distance from the corridor's spine
+  double their_defense_margin = 0.3;     // m, robot centre distance from their defense area
+  double our_defense_margin = 0.1;       // m, robot centre distance from our defense area (non-keepers)
+  double field_margin = 0.05;            // m, how far beyond the field lines a centre may go
+};
+
+/// `p` moved (minimally, a few passes) out of every zone the intent asks to avoid and into the field.
+Vec2 project_out(const Vec2& p, const MotionIntent& intent, const Zones& zones);
+
+/// The skill layer: one robot, one tick.
+class MotionPlanner {
+ public:
+  virtual ~MotionPlanner() = default;
+
+  /// The command that moves `robot` towards `intent` during the next `dt` seconds.
+  virtual RobotCommand plan(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones,
+                            double dt) = 0;
+
+  /// What was finally sent after the rule layer (team frame), so that acceleration limits start from it.
+  virtual void sent(std::uint32_t /*id*/, const Vec2& /*velocity*/, double /*angular*/) {}
+};
+
+/// Planner I's controller. Keeps the last sent velocity per robot id (0..15) for acceleration limiting.
+class SimpleMotionPlanner final : public MotionPlanner {
+ public:
+  explicit SimpleMotionPlanner(const MotionLimits& limits);
+
+  RobotCommand plan(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones,
+                    double dt) override;
+  void sent(std::uint32_t id, const Vec2& velocity, double angular) override;
+
+ private:
+  struct Memory {
+    Vec2 velocity = Vec2::Zero();
+    double angular = 0;
+  };
+
+  MotionLimits limits_;
+  std::array<Memory, wm::kMaxRobotsPerTeam> memory_{};
+};
+
+/// Local-frame command from a team-frame velocity and the robot's heading.
+RobotCommand to_local(std::uint32_t id, const Vec2& velocity, double angular, double heading);
+/// Team-frame velocity of a local-frame command.
+Vec2 to_team(const RobotCommand& command, double heading);
+
+}  // namespace ssl::planner

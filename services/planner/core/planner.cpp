@@ -1,0 +1,356 @@
+#include "services/planner/core/planner.h"
+
+#include <algorithm>
+#include <array>
+#include <utility>
+
+#include "libs/behavior_tree/behavior_tree.h"
+#include "services/planner/core/motion.h"
+#include "services/planner/core/plays.h"
+#include "services/planner/core/rules.h"
+#include "services/world_model/core/game_state.h"
+#include "services/world_model/core/team_frame.h"
+
+namespace ssl::planner {
+namespace {
+
+namespace bt = ssl::bt;
+
+/// What every node reads: the tick's situation and the team's memory (pointers: set before each tick).
+struct TickInput {
+  const Situation* situation = nullptr;
+  PlayMemory* memory = nullptr;
+};
+
+inline constexpr bt::Key<TickInput> kInput{"tick_input"};
+inline constexpr bt::Key<TeamIntents> kIntents{"intents"};
+inline constexpr bt::Key<std::uint32_t> kAttacker{"attacker"};  // kNoRobot: none
+
+inline constexpr std::uint32_t kNoRobot = 0xffffffffu;
+
+using GamePredicate = bool (*)(const Situation&);
+using PlayFunction = void (*)(const Situation&, PlayMemory&, TeamIntents&);
+
+bt::NodePtr check(std::string name, GamePredicate predicate) {
+  return bt::condition(std::move(name),
+                       [predicate](const bt::LeafContext& leaf) {
+                         const Result<TickInput> input = leaf.get(kInput);
+                         return input && input->situation && predicate(*input->situation);
+                       },
+                       {bt::reads(kInput)});
+}
+
+/// An action that runs one play into the intents.
+bt::NodePtr run(std::string name, PlayFunction play) {
+  return bt::action(std::move(name),
+                    [play](bt::LeafContext& leaf) {
+                      const Result<TickInput> input = leaf.get(kInput);
+                      if (!input || !input->situation) return bt::NodeStatus::kFailure;
+                      Result<TeamIntents> intents = leaf.get(kIntents);
+                      if (!intents) return bt::NodeStatus::kFailure;
+                      play(*input->situation, *input->memory, *intents);
+                      return leaf.set(kIntents, std::move(*intents)) ? bt::NodeStatus::kSuccess
+                                                                     : bt::NodeStatus::kFailure;
+                    },
+                    {bt::reads(kInput), bt::reads(kIntents), bt::writes(kIntents)});
+}
+
+/// A guarded branch: `then` runs while `when` holds (re-checked every tick).
+bt::NodePtr branch(std::string name, std::string question, GamePredicate when, bt::NodePtr then) {
+  return bt::reactive_sequence(std::move(name), {check(std::move(question), when), std::move(then)});
+}
+
+/// "ours / theirs" resolved at tick time: a dispatcher with the two branches.
+bt::NodePtr dispatch(const std::string& name, GamePredicate ours, PlayFunction our_play,
+                     PlayFunction their_play) {
+  return bt::reactive_selector(name + "Dispatch", {
+      branch("Our" + name, "Ours?", ours, run("Our" + name, our_play)),
+      run("Their" + name, their_play),
+  });
+}
+
+void halt_play(const Situation& s, PlayMemory&, TeamIntents& out) { play_halt(s, out); }
+void stop_play(const Situation& s, PlayMemory& m, TeamIntents& out) { play_stop(s, m, out, "stop"); }
+void cannot_place_play(const Situation& s, PlayMemory& m, TeamIntents& out) {
+  play_stop(s, m, out, "our_ball_placement_not_allowed");
+}
+
+bool halted(const Situation& s) { return s.game->is_halted(); }
+bool stopped(const Situation& s) { return s.game->is_stopped(); }
+bool timeout(const Situation& s) { return s.game->is_timeout(); }
+bool ball_placement(const Situation& s) { return s.game->is_ball_placement(); }
+bool we_may_place(const Situation& s) { return s.game->is_our_ball_placement() && s.can_place_ball; }
+bool they_place(const Situation& s) { return s.game->is_their_ball_placement(); }
+bool kickoff(const Situation& s) { return s.game->is_kickoff(); }
+bool our_kickoff(const Situation& s) { return s.game->is_our_kickoff(); }
+bool penalty(const Situation& s) { return s.game->is_penalty(); }
+bool our_penalty(const Situation& s) { return s.game->is_our_penalty(); }
+bool free_kick(const Situation& s) { return s.game->is_free_kick(); }
+bool our_free_kick(const Situation& s) { return s.game->is_our_free_kick(); }
+
+// clang-format off
+/// Seeds/000 section 3, on top of GameState: a restart stays in its branch from PREPARE_* through
+/// NORMAL_START until the ball is in play (moved 0.05 m), so the kicker may kick and the others keep their
+/// places; plain NORMAL_START and FORCE_START match no branch and fall through to the strategy.
+bt::NodePtr referee_override() {
+  return bt::reactive_selector("RefereeOverride", {
+      branch("Halt", "Halted?", halted, run("HaltAll", halt_play)),
+      branch("Stop", "Stopped?", stopped, run("StopFormation", stop_play)),
+      branch("Timeout", "Timeout?", timeout, run("Park", play_timeout)),
+      branch("BallPlacement", "BallPlacement?", ball_placement,
+             bt::reactive_selector("BallPlacementDispatch", {
+                 branch("OurBallPlacement", "OursAndAllowed?", we_may_place,
+                        run("PlaceBall", play_our_ball_placement)),
+                 branch("TheirBallPlacement", "Theirs?", they_place,
+                        run("ClearPlacement", play_their_ball_placement)),
+                 run("CannotPlace", cannot_place_play),
+             })),
+      branch("Kickoff", "Kickoff?", kickoff,
+             dispatch("Kickoff", our_kickoff, play_our_kickoff, play_their_kickoff)),
+      branch("Penalty", "Penalty?", penalty,
+             dispatch("Penalty", our_penalty, play_our_penalty, play_their_penalty)),
+      branch("DirectFree", "DirectFree?", free_kick,
+             dispatch("FreeKick", our_free_kick, play_our_free_kick, play_their_free_kick)),
+  });
+}
+// clang-format on
+
+/// One step of the base strategy: the tick input, the intents and the attacker in and out.
+using StrategyBody = bt::NodeStatus (*)(const Situation&, PlayMemory&, TeamIntents&, std::uint32_t& attacker);
+
+bt::NodePtr strategy_step(std::string name, StrategyBody body) {
+  return bt::action(
+      std::move(name),
+      [body](bt::LeafContext& leaf) {
+        const Result<TickInput> input = leaf.get(kInput);
+        Result<TeamIntents> intents = leaf.get(kIntents);
+        const Result<std::uint32_t> attacker = leaf.get(kAttacker);
+        if (!input || !input->situation || !intents || !attacker) return bt::NodeStatus::kFailure;
+        std::uint32_t chosen = *attacker;
+        const bt::NodeStatus status = body(*input->situation, *input->memory, *intents, chosen);
+        if (!leaf.set(kIntents, std::move(*intents)) || !leaf.set(kAttacker, chosen)) {
+          return bt::NodeStatus::kFailure;
+        }
+        return status;
+      },
+      {bt::reads(kInput), bt::reads(kIntents), bt::writes(kIntents), bt::reads(kAttacker),
+       bt::writes(kAttacker)});
+}
+
+bool has_attacker(const bt::LeafContext& leaf) {
+  const Result<std::uint32_t> attacker = leaf.get(kAttacker);
+  return attacker && *attacker != kNoRobot;
+}
+
+bool ready_to_kick(const bt::LeafContext& leaf) {
+  const Result<TickInput> input = leaf.get(kInput);
+  const Result<std::uint32_t> attacker = leaf.get(kAttacker);
+  return input && input->situation && attacker && *attacker != kNoRobot &&
+         attacker_ready_to_kick(*input->situation, *attacker);
+}
+
+bt::NodeStatus assign_roles(const Situation& s, PlayMemory& m, TeamIntents& out, std::uint32_t& attacker) {
+  attacker = strategy_goalkeeper_and_attacker(s, m, out).value_or(kNoRobot);
+  return bt::NodeStatus::kSuccess;
+}
+bt::NodeStatus kick_at_goal(const Situation& s, PlayMemory&, TeamIntents& out, std::uint32_t& attacker) {
+  strategy_kick(s, attacker, out);
+  return bt::NodeStatus::kSuccess;
+}
+bt::NodeStatus drive_to_ball(const Situation& s, PlayMemory&, TeamIntents& out, std::uint32_t& attacker) {
+  strategy_approach(s, attacker, out);
+  return bt::NodeStatus::kSuccess;
+}
+bt::NodeStatus support_and_defend(const Situation& s, PlayMemory& m, TeamIntents& out,
+                                  std::uint32_t& attacker) {
+  strategy_support(s, m, attacker == kNoRobot ? std::nullopt : std::optional(attacker), out);
+  return bt::NodeStatus::kSuccess;
+}
+
+// clang-format off
+/// The base strategy (seeds/001, simplified): the goalkeeper guards the goal line; the robot closest to the
+/// ball attacks (kicks at the goal when aligned behind the ball, else drives there); the others defend in
+/// front of our defense area and support ahead of the ball.
+bt::NodePtr base_strategy() {
+  const bt::Ports attacker_port = {bt::reads(kAttacker)};
+  const bt::Ports kick_ports = {bt::reads(kInput), bt::reads(kAttacker)};
+  return bt::sequence("BaseStrategy", {
+      strategy_step("AssignRoles", assign_roles),
+      bt::succeeder(bt::reactive_selector("Attacker", {
+          bt::reactive_sequence("Shoot", {
+              bt::condition("HasAttacker?", has_attacker, attacker_port),
+              bt::condition("ReadyToKick?", ready_to_kick, kick_ports),
+              strategy_step("KickAtGoal", kick_at_goal),
+          }),
+          bt::reactive_sequence("Approach", {
+              bt::condition("HasAttacker?", has_attacker, attacker_port),
+              strategy_step("DriveToBall", drive_to_ball),
+          }),
+      }), "AttackIfAny"),
+      strategy_step("SupportAndDefend", support_and_defend),
+  });
+}
+// clang-format on
+
+TreeNodeInfo::Status to_info(bt::NodeStatus status) {
+  switch (status) {
+    case bt::NodeStatus::kRunning: return TreeNodeInfo::Status::kRunning;
+    case bt::NodeStatus::kSuccess: return TreeNodeInfo::Status::kSuccess;
+    case bt::NodeStatus::kFailure: return TreeNodeInfo::Status::kFailure;
+    case bt::NodeStatus::kIdle: break;
+  }
+  return TreeNodeInfo::Status::kIdle;
+}
+
+}  // namespace
+
+struct Planner::Impl {
+  Impl(const PlannerConfig& cfg, std::unique_ptr<MotionPlanner> motion_planner)
+      : config(cfg),
+        game(cfg.team),
+        memory(cfg.role_hysteresis),
+        motion(motion_planner ? std::move(motion_planner)
+                              : std::make_unique<SimpleMotionPlanner>(cfg.limits)),
+        tree(bt::reactive_selector("Root", {referee_override(), base_strategy()})) {
+    robots.reserve(wm::kMaxRobotsPerTeam);
+    enemies.reserve(wm::kMaxRobotsPerTeam);
+  }
+
+  void step(const PlannerInputs& inputs, time::Timestamp now, PlannerOutput& out);
+
+  PlannerConfig config;
+  wm::GameState game;
+  PlayMemory memory;
+  std::unique_ptr<MotionPlanner> motion;
+  bt::Tree tree;
+  Situation situation;
+  TeamIntents intents;
+  std::vector<wm::RobotState> robots;
+  std::vector<wm::RobotState> enemies;
+  std::vector<bt::NodeSnapshot> rows;
+  std::optional<time::Timestamp> last_now;
+  std::uint64_t ticks = 0;
+};
+
+void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, PlannerOutput& out) {
+  ++ticks;
+  double dt = config.tick_period;
+  if (last_now) dt = std::clamp(time::to_seconds(now - *last_now), 0.001, 0.05);
+  last_now = now;
+
+  const wm::RefereeInfo& referee = inputs.referee.info;
+  const wm::TeamFrame frame =
+      wm::TeamFrame::make(config.team, referee.blue_team_on_positive_half.value_or(false));
+  const wm::WorldState& world = inputs.world;
+  const bool ball_known = world.has_ball;
+  const Vec2 ball = ball_known ? Vec2(world.ball.position.head<2>()) : Vec2::Zero();
+  std::optional<Vec2> ball_vision;
+  if (ball_known) ball_vision = frame.to_vision_point(ball);
+  game.update(referee, frame, ball_vision);
+  if (ball_vision) game.update_ball(*ball_vision);
+
+  robots.clear();
+  for (const wm::RobotState& robot : world.friendly) {
+    if (robot.visible && robot.id < wm::kMaxRobotsPerTeam) robots.push_back(robot);
+  }
+  std::sort(robots.begin(), robots.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+  enemies.clear();
+  for (const wm::RobotState& robot : world.enemy) {
+    if (robot.visible) enemies.push_back(robot);
+  }
+
+  Situation& s = situation;
+  s.config = &config;
+  s.field = wm::Field(inputs.field.value_or(config.default_field));
+  s.game = &game;
+  s.ball_known = ball_known;
+  s.ball = ball;
+  s.ball_velocity = ball_known ? Vec2(world.ball.velocity.head<2>()) : Vec2::Zero();
+  s.next_command = referee.next_command;
+  s.we_are_blue = config.team == TeamColor::kBlue;
+  s.can_place_ball = inputs.referee.our_can_place_ball;
+  s.placement_target = game.ball_placement_position();
+  s.robots = robots;
+  s.enemies = enemies;
+  s.keeper.reset();
+  for (const wm::RobotState& robot : robots) {
+    if (robot.id == game.our_goalkeeper()) s.keeper = robot.id;
+  }
+  s.zones.field = s.field;
+  s.zones.ball = ball_known ? std::optional<Vec2>(ball) : std::nullopt;
+  s.zones.placement_target = s.placement_target;
+  s.zones.placement_corridor_radius = config.ball_keep_away + config.robot_radius + config.keep_away_margin;
+  s.zones.their_defense_margin =
+      config.defense_area_keep_away + config.robot_radius + config.keep_away_margin;
+  s.zones.our_defense_margin = config.robot_radius + 0.05;
+
+  // Inputs, a fresh intent table, tick.
+  bt::Blackboard& board = tree.blackboard();
+  (void)board.set(kInput, TickInput{&situation, &memory});
+  for (MotionIntent& intent : intents.robots) intent = MotionIntent{};
+  intents.play = "none";
+  (void)board.set(kIntents, intents);
+  (void)board.set(kAttacker, kNoRobot);
+  tree.tick(now);
+  if (Result<TeamIntents> result = board.get(kIntents)) intents = *result;
+
+  // Skill layer, then the rule layer.
+  const std::optional<std::uint32_t> placer =
+      intents.play == std::string_view("our_ball_placement") ? memory.current_placer : std::nullopt;
+  const RuleLimits limits = rule_limits(game, config, s.can_place_ball, placer);
+  out.commands.resize(robots.size());
+  out.roles.resize(robots.size());
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    const wm::RobotState& robot = robots[i];
+    const MotionIntent& intent = intents.robots[robot.id];
+    RobotCommand command = motion->plan(robot, intent, s.zones, dt);
+    command.id = robot.id;
+    command = enforce(limits, robot, command, s.zones.ball);
+    motion->sent(robot.id, to_team(command, robot.orientation), command.angular);
+    out.commands[i] = command;
+    RoleInfo& role = out.roles[i];
+    role.robot_id = robot.id;
+    role.role.assign(intent.role);
+    role.tactic.assign(intent.tactic);
+    role.skill.assign(intent.skill);
+    role.target = intent.active ? intent.target : robot.position;
+  }
+  out.play.assign(intents.play);
+  out.tick = ticks;
+  tree.snapshot(rows);
+  out.tree.resize(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    out.tree[i].name.assign(rows[i].path);
+    out.tree[i].depth = static_cast<std::uint16_t>(rows[i].depth);
+    out.tree[i].status =
+        rows[i].last_tick == tree.tick_count() ? to_info(rows[i].status) : TreeNodeInfo::Status::kIdle;
+  }
+}
+
+Planner::Planner(const PlannerConfig& config) : Planner(config, nullptr) {}
+Planner::Planner(const PlannerConfig& config, std::unique_ptr<MotionPlanner> motion)
+    : impl_(std::make_unique<Impl>(config, std::move(motion))) {}
+Planner::~Planner() = default;
+Planner::Planner(Planner&&) noexcept = default;
+Planner& Planner::operator=(Planner&&) noexcept = default;
+
+PlannerOutput Planner::step(const PlannerInputs& inputs, time::Timestamp now) {
+  PlannerOutput out;
+  impl_->step(inputs, now, out);
+  return out;
+}
+
+void Planner::step(const PlannerInputs& inputs, time::Timestamp now, PlannerOutput& out) {
+  impl_->step(inputs, now, out);
+}
+
+const MotionIntent* Planner::last_intent(std::uint32_t id) const {
+  if (id >= impl_->intents.robots.size()) return nullptr;
+  const MotionIntent& intent = impl_->intents.robots[id];
+  return intent.active ? &intent : nullptr;
+}
+
+std::string Planner::tree_ascii() const { return bt::to_ascii(impl_->tree.root()); }
+std::string Planner::tree_dot() const { return bt::to_dot(impl_->tree.root()); }
+
+}  // namespace ssl::planner

@@ -1,0 +1,140 @@
+// Planner: the pure core of the planner service. Each tick it takes the world (TEAM frame, from
+// world.state), the referee state and `now`, ticks the team's behaviour tree and returns one command per
+// robot plus what it decided (for planner.debug). No DDS, sockets, threads or clocks; the same inputs give
+// the same outputs.
+//
+// The tree (seeds/000 section 3): a Root selector whose first child is the RefereeOverride subtree (HALT,
+// STOP, TIMEOUT, ball placement, kickoff, penalty, direct free kick, each ours or theirs resolved at tick
+// time from the command and our colour); NORMAL_START / FORCE_START fall through to the strategy's tree
+// (a prepared kickoff / penalty, and a free kick, stay in their branch until the ball is in play, so that
+// our kicker may now kick and everybody else keeps the restart's positions; wm::GameState tracks that).
+// Tree actions do not write commands: they write per-robot MOTION INTENTS (where to go, how fast at most,
+// what to avoid, kick/dribble) to the blackboard; the skill layer turns intents into velocity commands
+// (planner I: a simple controller; planner II replaces it with trajectories behind the same interface),
+// and a final rule layer enforces the command's limits whatever the tree said (e.g. HALT -> zero, STOP ->
+// at most 1.5 m/s).
+//
+//   Planner planner({.team = TeamColor::kBlue});
+//   PlannerOutput out = planner.step({.world = world, .referee = referee}, now);
+//   publish(out.commands); publish_debug(out);
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "libs/common/team.h"
+#include "libs/time/time.h"
+#include "services/world_model/core/types.h"
+
+namespace ssl::planner {
+
+using wm::Vec2;
+
+struct MotionIntent;   // motion.h
+class MotionPlanner;   // motion.h
+
+/// The referee state the planner uses (from referee.state). Positions in the VISION frame, as sent.
+struct RefereeInput {
+  wm::RefereeInfo info;               // command, counter, side, designated position, next command, keepers
+  bool our_can_place_ball = true;     // TeamInfo.can_place_ball of OUR team
+  std::uint32_t our_max_allowed_bots = 11;
+};
+
+struct PlannerInputs {
+  wm::WorldState world;               // TEAM frame (world.state)
+  RefereeInput referee;
+  std::optional<wm::FieldSize> field; // from vision.geometry when known, else the configured division's
+};
+
+enum class KickType { kNone, kFlat, kChip };
+
+/// One robot's command, LOCAL frame (as robot.commands): forward towards the dribbler, left, CCW.
+struct RobotCommand {
+  std::uint32_t id = 0;
+  double forward = 0;      // m/s
+  double left = 0;         // m/s
+  double angular = 0;      // rad/s
+  KickType kick = KickType::kNone;
+  double kick_speed = 0;   // m/s
+  double chip_angle = 0;   // rad
+  double dribbler_rpm = 0;
+};
+
+/// Debug: who does what, where to (TEAM frame).
+struct RoleInfo {
+  std::uint32_t robot_id = 0;
+  std::string role;     // e.g. "goalkeeper", "kicker", "defender"
+  std::string tactic;   // e.g. "stop_formation", "place_ball"
+  std::string skill;    // e.g. "move_to", "dribble_to", "kick"
+  Vec2 target = Vec2::Zero();
+};
+
+struct TreeNodeInfo {
+  std::string name;     // node path or name
+  std::uint16_t depth = 0;
+  enum class Status { kIdle, kRunning, kSuccess, kFailure } status = Status::kIdle;
+};
+
+struct PlannerOutput {
+  std::vector<RobotCommand> commands;  // one per visible friendly robot, by id
+  std::string play;                    // the active override branch or strategy play, e.g. "stop", "our_kickoff"
+  std::vector<RoleInfo> roles;
+  std::vector<TreeNodeInfo> tree;      // depth-first, as ticked
+  std::uint64_t tick = 0;
+};
+
+struct MotionLimits {
+  double max_speed = 3.0;              // m/s, normal play
+  double max_acceleration = 3.0;       // m/s^2
+  double max_angular_speed = 6.0;      // rad/s
+  double max_angular_acceleration = 30;  // rad/s^2
+};
+
+struct PlannerConfig {
+  TeamColor team = TeamColor::kBlue;
+  MotionLimits limits;
+  double tick_period = 1.0 / 100;      // s, nominal (used for acceleration limiting)
+  double robot_radius = 0.09;          // m
+  double stop_speed = 1.5;             // m/s, rules: at most 1.5 m/s during STOP (a margin is applied below it)
+  double stop_speed_margin = 0.2;      // m/s below stop_speed we aim for
+  double ball_keep_away = 0.5;         // m, rules: distance to the ball during STOP / their restarts
+  double keep_away_margin = 0.1;       // m, extra we keep to be safe
+  double defense_area_keep_away = 0.2; // m, rules: distance to the opponent defense area during STOP
+  double placement_tolerance = 0.15;   // m, rules: ball placement success radius
+  double penalty_line_behind = 1.0;    // m, rules 13.3 (current rulebook): others >= 1 m behind the ball
+  double ball_placement_speed = 1.0;   // m/s, the placer while it carries the ball
+  double kick_speed = 5.0;             // m/s, shots at the goal (rules: at most 6.5 m/s)
+  double role_hysteresis = 0.3;        // m, a new role assignment must be this much (and 10 %) cheaper
+  wm::FieldSize default_field;         // until vision.geometry arrives (division A)
+};
+
+class Planner {
+ public:
+  explicit Planner(const PlannerConfig& config);
+  /// With another skill layer (planner II: trajectories). nullptr: the simple controller.
+  Planner(const PlannerConfig& config, std::unique_ptr<MotionPlanner> motion);
+  ~Planner();
+  Planner(Planner&&) noexcept;
+  Planner& operator=(Planner&&) noexcept;
+
+  /// One tick at `now` (host wall clock; only differences matter).
+  PlannerOutput step(const PlannerInputs& inputs, time::Timestamp now);
+  /// The same, into `out` (its vectors and strings are reused: no allocation once they are big enough).
+  void step(const PlannerInputs& inputs, time::Timestamp now, PlannerOutput& out);
+
+  /// The motion intent the last tick gave robot `id`, nullptr if it had none (not visible, or id > 15).
+  const MotionIntent* last_intent(std::uint32_t id) const;
+
+  /// The tree as ASCII / DOT (last tick's statuses), for --print-tree and the console.
+  std::string tree_ascii() const;
+  std::string tree_dot() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ssl::planner

@@ -1,0 +1,703 @@
+#include "services/planner/core/plays.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "libs/geometry/angle.h"
+#include "libs/geometry/project.h"
+#include "libs/geometry/segment.h"
+#include "libs/geometry/vec2.h"
+
+namespace ssl::planner {
+namespace {
+
+using wm::RefereeCommand;
+
+// Formation keys for the stable assigner (one per formation shape).
+enum FormationKey : std::uint32_t {
+  kDefensiveKey = 1,
+  kAttackKey,
+  kOurKickoffKey,
+  kTheirKickoffKey,
+  kOurPenaltyKey,
+  kTheirPenaltyKey,
+  kParkKey,
+};
+
+struct Slot {
+  Vec2 position = Vec2::Zero();
+  std::string_view role;
+};
+
+struct Formation {
+  std::array<Slot, kMaxSlots> slots{};
+  std::size_t count = 0;
+  void add(const Vec2& position, std::string_view role) {
+    if (count < slots.size()) slots[count++] = {position, role};
+  }
+};
+
+struct Ids {
+  std::array<std::uint32_t, kMaxSlots> ids{};
+  std::size_t count = 0;
+  void add(std::uint32_t id) {
+    if (count < ids.size()) ids[count++] = id;
+  }
+  bool contains(std::uint32_t id) const {
+    return std::find(ids.begin(), ids.begin() + count, id) != ids.begin() + count;
+  }
+  std::span<const std::uint32_t> view() const { return {ids.data(), count}; }
+};
+
+double radius(const Situation& s) { return s.config->robot_radius; }
+/// Robot-centre distance to the ball that keeps the rule's 0.5 m plus our margin.
+double ball_clearance(const Situation& s) {
+  return s.config->ball_keep_away + s.config->robot_radius + s.config->keep_away_margin;
+}
+double stop_speed(const Situation& s) { return s.config->stop_speed - s.config->stop_speed_margin; }
+double dribbler_distance(const Situation& s) { return radius(s) + s.field.size().ball_radius; }
+double heading_to(const Vec2& from, const Vec2& to) { return geom::angle_of(to - from).radians(); }
+double sign_or_one(double v) { return v < 0 ? -1.0 : 1.0; }
+Vec2 unit_or(const Vec2& v, const Vec2& fallback) {
+  const Vec2 u = geom::normalized_or_zero(v);
+  return u.squaredNorm() > 0 ? u : fallback;
+}
+
+MotionIntent base_intent(const Situation& s, std::string_view tactic) {
+  MotionIntent intent;
+  intent.active = true;
+  intent.max_speed = s.config->limits.max_speed;
+  intent.tactic = tactic;
+  return intent;
+}
+
+MotionIntent stop_intent(const Situation& s, std::string_view tactic) {
+  MotionIntent intent = base_intent(s, tactic);
+  intent.max_speed = stop_speed(s);
+  intent.avoid_ball_radius = ball_clearance(s);
+  return intent;
+}
+
+void begin(const Situation& s, TeamIntents& out, std::string_view play) {
+  out.play = play;
+  for (MotionIntent& intent : out.robots) intent = MotionIntent{};
+  (void)s;
+}
+
+void write(const Situation& s, TeamIntents& out, std::uint32_t id, MotionIntent intent) {
+  if (id >= out.robots.size()) return;
+  intent.target = project_out(intent.target, intent, s.zones);
+  out.robots[id] = intent;
+}
+
+Ids field_players(const Situation& s) {
+  Ids ids;
+  for (const wm::RobotState& robot : s.robots) {
+    if (!s.keeper || robot.id != *s.keeper) ids.add(robot.id);
+  }
+  return ids;
+}
+
+/// The field player closest to `point` (stable), or the keeper when it is our only robot.
+std::optional<std::uint32_t> choose_closest(const Situation& s, StableChoice& choice, const Vec2& point) {
+  const Ids ids = field_players(s);
+  std::array<double, kMaxSlots> scores{};
+  for (std::size_t i = 0; i < ids.count; ++i)
+    scores[i] = (find_robot(s, ids.ids[i])->position - point).norm();
+  if (ids.count == 0) return s.keeper;
+  return choice.choose(ids.view(), {scores.data(), ids.count});
+}
+
+// ---- formations ---------------------------------------------------------------------------------------
+
+double defender_x(const Situation& s) {
+  return -s.field.half_length() + s.field.size().penalty_area_depth + radius(s) + 0.3;
+}
+
+void add_defenders(const Situation& s, Formation& f, int which) {
+  const double y = std::clamp(s.ball.y() * 0.3, -0.8, 0.8);
+  if (which & 1) f.add({defender_x(s), y + 0.35}, "defender");
+  if (which & 2) f.add({defender_x(s), y - 0.35}, "defender");
+}
+
+void add_generic(const Situation& s, Formation& f) {
+  const double L = s.field.length();
+  const double W = s.field.width();
+  const Vec2 spots[] = {
+      {-0.25 * L, 0.25 * W}, {-0.25 * L, -0.25 * W}, {-0.05 * L, 0.35 * W},  {-0.05 * L, -0.35 * W},
+      {-0.15 * L, 0.0},      {-0.38 * L, 0.38 * W},  {-0.38 * L, -0.38 * W}, {0.12 * L, 0.3 * W},
+      {0.12 * L, -0.3 * W},  {0.12 * L, 0.0},        {-0.3 * L, 0.45 * W},   {-0.3 * L, -0.45 * W},
+      {0.0, 0.45 * W},       {0.0, -0.45 * W},       {-0.1 * L, 0.15 * W},   {-0.1 * L, -0.15 * W}};
+  for (const Vec2& p : spots) f.add(p, "support");
+}
+
+/// Between the ball and our goal: a two-robot wall, two defenders, then supporters.
+Formation defensive_set(const Situation& s) {
+  Formation f;
+  const Vec2 u = unit_or(s.field.our_goal_center() - s.ball, Vec2(-1, 0));
+  const Vec2 wall = s.ball + u * (ball_clearance(s) + 0.1);
+  const Vec2 side = geom::perpendicular(u) * (radius(s) + 0.03);
+  f.add(wall + side, "wall");
+  add_defenders(s, f, 1);
+  f.add(wall - side, "wall");
+  add_defenders(s, f, 2);
+  add_generic(s, f);
+  return f;
+}
+
+/// Ahead of the ball for passes, and two defenders.
+Formation attack_set(const Situation& s) {
+  Formation f;
+  const double limit_x = s.field.half_length() - s.field.size().penalty_area_depth - 0.6;
+  const double min_x = -s.field.half_length() + s.field.size().penalty_area_depth + 0.5;
+  const auto x_at = [&](double dx) { return std::clamp(s.ball.x() + dx, min_x, limit_x); };
+  const double side = sign_or_one(s.ball.y());
+  const double W = s.field.width();
+  add_defenders(s, f, 1);
+  f.add({x_at(1.8), -side * 0.25 * W}, "support");
+  f.add({x_at(0.8), side * 0.35 * W}, "support");
+  add_defenders(s, f, 2);
+  f.add({x_at(-1.2), -side * 0.1 * W}, "support");
+  f.add({x_at(2.5), side * 0.1 * W}, "support");
+  add_generic(s, f);
+  return f;
+}
+
+Formation our_kickoff_set(const Situation& s) {
+  Formation f;
+  const double W = s.field.width();
+  const double L = s.field.length();
+  f.add({-0.35, 1.2}, "wing");
+  f.add({-0.35, -1.2}, "wing");
+  add_defenders(s, f, 3);
+  f.add({-1.5, 0.0}, "midfield");
+  f.add({-0.35, 0.36 * W}, "wing");
+  f.add({-0.35, -0.36 * W}, "wing");
+  f.add({-0.25 * L, 0.25 * W}, "support");
+  f.add({-0.25 * L, -0.25 * W}, "support");
+  f.add({-0.38 * L, 0.38 * W}, "support");
+  f.add({-0.38 * L, -0.38 * W}, "support");
+  add_generic(s, f);
+  return f;
+}
+
+Formation their_kickoff_set(const Situation& s) {
+  Formation f;
+  const double W = s.field.width();
+  const double L = s.field.length();
+  const double r = s.field.size().center_circle_radius + radius(s) + s.config->keep_away_margin + 0.1;
+  f.add({-r, 0.0}, "blocker");
+  f.add({-r * 0.75, r * 0.75 + 0.2}, "blocker");
+  f.add({-r * 0.75, -r * 0.75 - 0.2}, "blocker");
+  add_defenders(s, f, 3);
+  f.add({-0.35, 0.3 * W}, "wing");
+  f.add({-0.35, -0.3 * W}, "wing");
+  f.add({-0.25 * L, 0.25 * W}, "support");
+  f.add({-0.25 * L, -0.25 * W}, "support");
+  f.add({-0.38 * L, 0.38 * W}, "support");
+  add_generic(s, f);
+  return f;
+}
+
+/// A line across the field at `x`, spreading from y = 0 outwards.
+Formation line_set(const Situation& s, double x, std::string_view role) {
+  Formation f;
+  const double spacing = 2 * radius(s) + 0.25;
+  const double max_y = s.field.half_width() - radius(s) - 0.1;
+  for (std::size_t k = 0; k < kMaxSlots; ++k) {
+    const double step = static_cast<double>((k + 1) / 2) * spacing;
+    const double y = (k % 2 == 0) ? step : -step;
+    if (std::abs(y) > max_y) {
+      f.add({x + (x < 0 ? -1.0 : 1.0) * 0.4, std::clamp(y * 0.5, -max_y, max_y)}, role);
+    } else {
+      f.add({x, k == 0 ? 0.0 : y}, role);
+    }
+  }
+  return f;
+}
+
+double penalty_line_offset(const Situation& s) {
+  return s.config->penalty_line_behind + radius(s) + s.config->keep_away_margin + 0.05;
+}
+
+Formation park_set(const Situation& s) {
+  Formation f;
+  const double y = -s.field.half_width() + radius(s) + 0.2;
+  for (std::size_t k = 0; k < kMaxSlots; ++k) f.add({-0.4 - 0.35 * static_cast<double>(k), y}, "parked");
+  return f;
+}
+
+/// Assigns the robots not in `reserved` to `f` (stably) and writes their intents from `tmpl`.
+void fill(const Situation& s, PlayMemory& memory, std::uint32_t key, Formation f, const MotionIntent& tmpl,
+          const Ids& reserved, TeamIntents& out) {
+  Ids ids;
+  std::array<Vec2, kMaxSlots> positions{};
+  for (const wm::RobotState& robot : s.robots) {
+    if (reserved.contains(robot.id) || ids.count >= kMaxSlots) continue;
+    positions[ids.count] = robot.position;
+    ids.add(robot.id);
+  }
+  if (ids.count == 0) return;
+  const std::size_t n = std::min(f.count, ids.count);
+  // The slots that will be used, legal first, then kept apart so that two robots do not share a spot.
+  std::array<Vec2, kMaxSlots> targets{};
+  for (std::size_t i = 0; i < n; ++i) targets[i] = project_out(f.slots[i].position, tmpl, s.zones);
+  const double min_gap = 2 * radius(s) + 0.08;
+  for (int pass = 0; pass < 3; ++pass) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const Vec2 d = targets[j] - targets[i];
+        const double dist = d.norm();
+        if (dist >= min_gap) continue;
+        const Vec2 u = dist > 1e-9 ? Vec2(d / dist) : Vec2(0, 1);
+        const double push = (min_gap - dist) / 2 + 0.005;
+        targets[i] -= u * push;
+        targets[j] += u * push;
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) targets[i] = project_out(targets[i], tmpl, s.zones);
+  }
+  const std::span<const int> slot_of =
+      memory.assigner.assign(key, ids.view(), {positions.data(), ids.count}, {targets.data(), n});
+  for (std::size_t r = 0; r < ids.count; ++r) {
+    MotionIntent intent = tmpl;
+    const int slot = slot_of[r];
+    if (slot >= 0) {
+      intent.target = targets[static_cast<std::size_t>(slot)];
+      intent.role = f.slots[static_cast<std::size_t>(slot)].role;
+    } else {
+      intent.target = positions[r];
+      intent.role = "spare";
+    }
+    intent.orientation = heading_to(intent.target, s.ball);
+    write(s, out, ids.ids[r], intent);
+  }
+}
+
+// ---- single roles -------------------------------------------------------------------------------------
+
+/// The goalkeeper on its goal line, between the ball and the goal centre. `touch_line`: centre so close to
+/// the line that the robot touches it (their penalty).
+MotionIntent keeper_intent(const Situation& s, const MotionIntent& tmpl, bool touch_line) {
+  MotionIntent intent = tmpl;
+  intent.avoid_our_defense_area = false;
+  intent.role = "goalkeeper";
+  intent.skill = "guard_goal";
+  const double goal_line = -s.field.half_length();
+  const double x = touch_line ? goal_line + radius(s) * 0.6 : goal_line + radius(s) + 0.05;
+  // On the line from the ball to a point behind the goal centre: follows the ball, stays in the goal mouth.
+  const Vec2 anchor(goal_line - 0.5, 0.0);
+  double y = 0;
+  if (s.ball.x() > anchor.x() + 1e-6) y = s.ball.y() * (x - anchor.x()) / (s.ball.x() - anchor.x());
+  const double max_y = s.field.size().goal_width / 2 - radius(s);
+  intent.target = {x, std::clamp(y, -max_y, max_y)};
+  intent.orientation = heading_to(intent.target, s.ball);
+  return intent;
+}
+
+void write_keeper(const Situation& s, const MotionIntent& tmpl, bool touch_line, Ids& reserved,
+                  TeamIntents& out) {
+  if (!s.keeper) return;
+  reserved.add(*s.keeper);
+  write(s, out, *s.keeper, keeper_intent(s, tmpl, touch_line));
+}
+
+/// The kicker of a restart before it may touch the ball: behind the ball towards `aim`, `distance` from it.
+MotionIntent staging_intent(const Situation& s, const MotionIntent& tmpl, const Vec2& aim, double distance) {
+  MotionIntent intent = tmpl;
+  const Vec2 u = unit_or(aim - s.ball, Vec2(1, 0));
+  intent.target = s.ball - u * distance;
+  intent.orientation = geom::angle_of(u).radians();
+  intent.avoid_ball_radius =
+      std::min(tmpl.avoid_ball_radius > 0 ? tmpl.avoid_ball_radius : distance, distance - 0.02);
+  intent.role = "kicker";
+  intent.skill = "approach_ball";
+  return intent;
+}
+
+/// Pre-positions for the announced next command under the STOP limits (or the default stop formation).
+void stop_with_next(const Situation& s, PlayMemory& memory, TeamIntents& out, const MotionIntent& tmpl) {
+  Ids reserved;
+  const auto next = s.next_command;
+  const bool blue = s.we_are_blue;
+  const auto is = [&](RefereeCommand ours_blue, RefereeCommand ours_yellow) {
+    return next && *next == (blue ? ours_blue : ours_yellow);
+  };
+  using C = RefereeCommand;
+  const bool our_kickoff = is(C::kPrepareKickoffBlue, C::kPrepareKickoffYellow);
+  const bool their_kickoff = is(C::kPrepareKickoffYellow, C::kPrepareKickoffBlue);
+  const bool our_penalty = is(C::kPreparePenaltyBlue, C::kPreparePenaltyYellow);
+  const bool their_penalty = is(C::kPreparePenaltyYellow, C::kPreparePenaltyBlue);
+  const bool our_free =
+      is(C::kDirectFreeBlue, C::kDirectFreeYellow) || is(C::kIndirectFreeBlue, C::kIndirectFreeYellow);
+  write_keeper(s, tmpl, false, reserved, out);
+  const double staging = ball_clearance(s) + 0.05;
+  if (our_kickoff || our_penalty || our_free) {
+    const Vec2 aim = our_free ? shot_target(s) : s.field.their_goal_center();
+    if (auto kicker = choose_closest(s, memory.kicker, s.ball)) {
+      if (!reserved.contains(*kicker)) {
+        reserved.add(*kicker);
+        write(s, out, *kicker, staging_intent(s, tmpl, aim, staging));
+      }
+    }
+  }
+  if (our_kickoff) {
+    fill(s, memory, kOurKickoffKey, our_kickoff_set(s), tmpl, reserved, out);
+  } else if (their_kickoff) {
+    fill(s, memory, kTheirKickoffKey, their_kickoff_set(s), tmpl, reserved, out);
+  } else if (our_penalty) {
+    fill(s, memory, kOurPenaltyKey, line_set(s, s.ball.x() - penalty_line_offset(s), "penalty_line"), tmpl,
+         reserved, out);
+  } else if (their_penalty) {
+    fill(s, memory, kTheirPenaltyKey, line_set(s, s.ball.x() + penalty_line_offset(s), "penalty_line"), tmpl,
+         reserved, out);
+  } else if (our_free) {
+    fill(s, memory, kAttackKey, attack_set(s), tmpl, reserved, out);
+  } else {
+    fill(s, memory, kDefensiveKey, defensive_set(s), tmpl, reserved, out);
+  }
+}
+
+/// Kickoff: every robot but the kicker in our half and outside the centre circle (targets).
+void keep_kickoff_legal(const Situation& s, TeamIntents& out, std::optional<std::uint32_t> kicker) {
+  const double margin = radius(s) + s.config->keep_away_margin;
+  const double circle = s.field.size().center_circle_radius + margin;
+  for (const wm::RobotState& robot : s.robots) {
+    if (kicker && robot.id == *kicker) continue;
+    MotionIntent& intent = out.robots[robot.id];
+    if (!intent.active) continue;
+    Vec2& p = intent.target;
+    p.x() = std::min(p.x(), -margin);
+    if (p.norm() < circle) p = unit_or(p, Vec2(-1, 0)) * circle;
+  }
+}
+
+}  // namespace
+
+const wm::RobotState* find_robot(const Situation& s, std::uint32_t id) {
+  for (const wm::RobotState& robot : s.robots) {
+    if (robot.id == id) return &robot;
+  }
+  return nullptr;
+}
+
+Vec2 shot_target(const Situation& s) {
+  const Vec2 goal = s.field.their_goal_center();
+  const double post = s.field.size().goal_width / 2 - 0.12;
+  const Vec2 candidates[] = {goal, goal + Vec2(0, post), goal - Vec2(0, post)};
+  Vec2 best = goal;
+  double best_room = -1;
+  for (const Vec2& candidate : candidates) {
+    double room = 1e9;
+    const geom::Segment line{s.ball, candidate};
+    for (const wm::RobotState& enemy : s.enemies) {
+      room = std::min(room, (geom::project(enemy.position, line).point - enemy.position).norm());
+    }
+    if (room > best_room + 0.05) {
+      best_room = room;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+void play_halt(const Situation& s, TeamIntents& out) {
+  begin(s, out, "halt");
+  for (const wm::RobotState& robot : s.robots) {
+    MotionIntent intent;
+    intent.active = true;
+    intent.halt = true;
+    intent.target = robot.position;
+    intent.orientation = robot.orientation;
+    intent.max_speed = 0;
+    intent.role = s.keeper && robot.id == *s.keeper ? "goalkeeper" : "halted";
+    intent.tactic = "halt";
+    intent.skill = "halt";
+    if (robot.id < out.robots.size()) out.robots[robot.id] = intent;
+  }
+}
+
+void play_stop(const Situation& s, PlayMemory& memory, TeamIntents& out, std::string_view play) {
+  begin(s, out, play);
+  stop_with_next(s, memory, out, stop_intent(s, "stop_formation"));
+}
+
+void play_timeout(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  begin(s, out, "timeout");
+  const MotionIntent tmpl = stop_intent(s, "park");
+  Ids reserved;
+  write_keeper(s, tmpl, false, reserved, out);
+  fill(s, memory, kParkKey, park_set(s), tmpl, reserved, out);
+}
+
+void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  if (!s.placement_target) {
+    play_stop(s, memory, out, "our_ball_placement_no_target");
+    return;
+  }
+  begin(s, out, "our_ball_placement");
+  MotionIntent tmpl = stop_intent(s, "clear_placement");
+  tmpl.avoid_placement_corridor = true;
+  Ids reserved;
+  write_keeper(s, tmpl, false, reserved, out);
+  const std::optional<std::uint32_t> placer_id = choose_closest(s, memory.placer, s.ball);
+  const wm::RobotState* placer = placer_id ? find_robot(s, *placer_id) : nullptr;
+  if (placer) {
+    if (memory.current_placer != placer->id) memory.place_phase = PlayMemory::PlacePhase::kApproach;
+    memory.current_placer = placer->id;
+    reserved.add(placer->id);
+    const Vec2 target = *s.placement_target;
+    const double dd = dribbler_distance(s);
+    const Vec2 heading = geom::Angle::from_radians(placer->orientation).to_unit_vector();
+    const Vec2 rel = placer->position - s.ball;
+    const bool holds_ball = rel.norm() < dd + 0.04 && (-rel).normalized().dot(heading) > std::cos(0.35);
+    const double ball_error = (s.ball - target).norm();
+    using P = PlayMemory::PlacePhase;
+    switch (memory.place_phase) {
+      case P::kApproach:
+        if (holds_ball) memory.place_phase = P::kCarry;
+        break;
+      case P::kCarry:
+        if (ball_error < 0.04) {
+          memory.place_phase = P::kRelease;
+        } else if (!holds_ball && rel.norm() > dd + 0.1) {
+          memory.place_phase = P::kApproach;
+        }
+        break;
+      case P::kRelease:
+        if (ball_error > s.config->placement_tolerance * 0.8) memory.place_phase = P::kApproach;
+        break;
+    }
+    MotionIntent intent = base_intent(s, "place_ball");
+    intent.max_speed = std::min(stop_speed(s), s.config->ball_placement_speed);
+    intent.role = "placer";
+    const Vec2 u = unit_or(target - s.ball, heading);
+    switch (memory.place_phase) {
+      case P::kApproach: {
+        const double along = rel.dot(u);
+        const double lateral = std::abs(geom::cross(u, rel));
+        const double heading_error = std::acos(std::clamp(heading.dot(u), -1.0, 1.0));
+        intent.orientation = geom::angle_of(u).radians();
+        if (along < -0.05 && lateral < 0.04 && heading_error < 0.2) {
+          intent.target = s.ball - u * (dd - 0.02);
+          intent.dribble = true;
+          intent.max_speed = 0.5;
+          intent.skill = "get_ball";
+        } else {
+          intent.target = s.ball - u * (dd + 0.12);
+          intent.avoid_ball_radius = dd + 0.06;
+          intent.skill = "approach_ball";
+        }
+        break;
+      }
+      case P::kCarry: {
+        const Vec2 to_target = target - placer->position;
+        const Vec2 dir = to_target.norm() > 0.25 ? unit_or(to_target, heading) : heading;
+        intent.target = target - dir * dd;
+        intent.orientation = geom::angle_of(dir).radians();
+        intent.dribble = true;
+        intent.max_speed = std::min(intent.max_speed, 0.3 + 1.5 * ball_error);
+        intent.skill = "dribble_to";
+        break;
+      }
+      case P::kRelease:
+        intent.target = s.ball - heading * (ball_clearance(s) + 0.05);
+        intent.orientation = placer->orientation;
+        intent.max_speed = 0.5;
+        intent.skill = "release_ball";
+        break;
+    }
+    intent.avoid_our_defense_area = false;  // rules 13.4: entering defense areas is allowed when placing
+    intent.avoid_their_defense_area = false;
+    write(s, out, placer->id, intent);
+  }
+  fill(s, memory, kDefensiveKey, defensive_set(s), tmpl, reserved, out);
+}
+
+void play_their_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  begin(s, out, "their_ball_placement");
+  MotionIntent tmpl = stop_intent(s, "clear_placement");
+  tmpl.avoid_placement_corridor = true;
+  Ids reserved;
+  write_keeper(s, tmpl, false, reserved, out);
+  fill(s, memory, kDefensiveKey, defensive_set(s), tmpl, reserved, out);
+}
+
+void play_our_kickoff(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  begin(s, out, "our_kickoff");
+  MotionIntent tmpl = base_intent(s, "kickoff_formation");
+  tmpl.avoid_ball_radius = s.field.size().center_circle_radius + radius(s) + s.config->keep_away_margin;
+  Ids reserved;
+  write_keeper(s, tmpl, false, reserved, out);
+  const std::optional<std::uint32_t> kicker = choose_closest(s, memory.kicker, s.ball);
+  if (kicker && !reserved.contains(*kicker)) {
+    reserved.add(*kicker);
+    if (s.game->is_ready()) {
+      if (attacker_ready_to_kick(s, *kicker)) {
+        strategy_kick(s, *kicker, out);
+      } else {
+        strategy_approach(s, *kicker, out);
+      }
+    } else {
+      MotionIntent kick_tmpl = base_intent(s, "kickoff");
+      kick_tmpl.avoid_ball_radius = dribbler_distance(s) + 0.08;
+      write(s, out, *kicker,
+            staging_intent(s, kick_tmpl, s.field.their_goal_center(), dribbler_distance(s) + 0.1));
+    }
+  }
+  fill(s, memory, kOurKickoffKey, our_kickoff_set(s), tmpl, reserved, out);
+  keep_kickoff_legal(s, out, kicker);
+}
+
+void play_their_kickoff(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  begin(s, out, "their_kickoff");
+  MotionIntent tmpl = base_intent(s, "kickoff_defense");
+  tmpl.avoid_ball_radius = std::max(s.field.size().center_circle_radius, s.config->ball_keep_away) +
+                           radius(s) + s.config->keep_away_margin;
+  Ids reserved;
+  write_keeper(s, tmpl, false, reserved, out);
+  fill(s, memory, kTheirKickoffKey, their_kickoff_set(s), tmpl, reserved, out);
+  keep_kickoff_legal(s, out, std::nullopt);
+}
+
+void play_our_penalty(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  begin(s, out, "our_penalty");
+  MotionIntent tmpl = base_intent(s, "penalty_line");
+  Ids reserved;
+  write_keeper(s, tmpl, false, reserved, out);
+  const std::optional<std::uint32_t> kicker = choose_closest(s, memory.kicker, s.ball);
+  if (kicker && !reserved.contains(*kicker)) {
+    reserved.add(*kicker);
+    if (s.game->is_ready()) {
+      if (attacker_ready_to_kick(s, *kicker)) {
+        strategy_kick(s, *kicker, out);
+      } else {
+        strategy_approach(s, *kicker, out);
+      }
+    } else {
+      MotionIntent kick_tmpl = base_intent(s, "penalty");
+      kick_tmpl.avoid_ball_radius = dribbler_distance(s) + 0.08;
+      write(s, out, *kicker,
+            staging_intent(s, kick_tmpl, s.field.their_goal_center(), dribbler_distance(s) + 0.12));
+    }
+  }
+  fill(s, memory, kOurPenaltyKey, line_set(s, s.ball.x() - penalty_line_offset(s), "penalty_line"), tmpl,
+       reserved, out);
+}
+
+void play_their_penalty(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  begin(s, out, "their_penalty");
+  MotionIntent tmpl = base_intent(s, "penalty_line");
+  tmpl.avoid_ball_radius = ball_clearance(s);
+  Ids reserved;
+  // The keeper touches its goal line until the ball is in play; after NORMAL_START it may slide along it.
+  MotionIntent keeper_tmpl = base_intent(s, "penalty_defense");
+  write_keeper(s, keeper_tmpl, true, reserved, out);
+  if (s.keeper && !s.game->is_ready()) {
+    MotionIntent& keeper = out.robots[*s.keeper];
+    keeper.target.y() = 0;
+  }
+  fill(s, memory, kTheirPenaltyKey, line_set(s, s.ball.x() + penalty_line_offset(s), "penalty_line"), tmpl,
+       reserved, out);
+}
+
+void play_our_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  begin(s, out, "our_free_kick");
+  MotionIntent tmpl = base_intent(s, "free_kick_support");
+  tmpl.avoid_ball_radius = s.config->ball_keep_away;  // room for the kicker
+  Ids reserved;
+  write_keeper(s, tmpl, false, reserved, out);
+  const std::optional<std::uint32_t> kicker = choose_closest(s, memory.kicker, s.ball);
+  if (kicker && !reserved.contains(*kicker)) {
+    reserved.add(*kicker);
+    if (attacker_ready_to_kick(s, *kicker)) {
+      strategy_kick(s, *kicker, out);
+    } else {
+      strategy_approach(s, *kicker, out);
+    }
+    out.robots[*kicker].role = "kicker";
+    out.robots[*kicker].tactic = "free_kick";
+  }
+  fill(s, memory, kAttackKey, attack_set(s), tmpl, reserved, out);
+}
+
+void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  begin(s, out, "their_free_kick");
+  MotionIntent tmpl = base_intent(s, "free_kick_defense");
+  tmpl.avoid_ball_radius = ball_clearance(s);
+  Ids reserved;
+  write_keeper(s, tmpl, false, reserved, out);
+  fill(s, memory, kDefensiveKey, defensive_set(s), tmpl, reserved, out);
+}
+
+// ---- base strategy --------------------------------------------------------------------------------------
+
+std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s, PlayMemory& memory,
+                                                              TeamIntents& out) {
+  begin(s, out, "base_strategy");
+  Ids reserved;
+  write_keeper(s, base_intent(s, "defend"), false, reserved, out);
+  if (!s.ball_known) return std::nullopt;
+  std::optional<std::uint32_t> attacker = choose_closest(s, memory.kicker, s.ball);
+  if (attacker && reserved.contains(*attacker)) attacker.reset();
+  return attacker;
+}
+
+bool attacker_ready_to_kick(const Situation& s, std::uint32_t attacker) {
+  const wm::RobotState* robot = find_robot(s, attacker);
+  if (!robot || !s.ball_known) return false;
+  const Vec2 u = unit_or(shot_target(s) - s.ball, Vec2(1, 0));
+  const Vec2 rel = robot->position - s.ball;
+  const double along = rel.dot(u);
+  const double lateral = std::abs(geom::cross(u, rel));
+  const double dd = dribbler_distance(s);
+  const Vec2 heading = geom::Angle::from_radians(robot->orientation).to_unit_vector();
+  return along < -(dd - 0.03) && along > -(dd + 0.06) && lateral < 0.03 && heading.dot(u) > std::cos(0.1);
+}
+
+void strategy_kick(const Situation& s, std::uint32_t attacker, TeamIntents& out) {
+  MotionIntent intent = base_intent(s, "attack");
+  const Vec2 u = unit_or(shot_target(s) - s.ball, Vec2(1, 0));
+  intent.target = s.ball + u * 0.2;
+  intent.orientation = geom::angle_of(u).radians();
+  intent.max_speed = 1.0;
+  intent.kick = KickType::kFlat;
+  intent.kick_speed = s.config->kick_speed;
+  intent.avoid_their_defense_area = false;  // the target may lie just inside; the shot happens before
+  intent.role = "attacker";
+  intent.skill = "kick";
+  write(s, out, attacker, intent);
+}
+
+void strategy_approach(const Situation& s, std::uint32_t attacker, TeamIntents& out) {
+  const wm::RobotState* robot = find_robot(s, attacker);
+  if (!robot) return;
+  MotionIntent intent = base_intent(s, "attack");
+  const Vec2 u = unit_or(shot_target(s) - s.ball, Vec2(1, 0));
+  const Vec2 rel = robot->position - s.ball;
+  const double dd = dribbler_distance(s);
+  intent.orientation = geom::angle_of(u).radians();
+  intent.role = "attacker";
+  if (rel.dot(u) < -0.06 && std::abs(geom::cross(u, rel)) < 0.08) {
+    intent.target = s.ball - u * (dd + 0.01);
+    intent.max_speed = 1.0;
+    intent.skill = "align";
+  } else {
+    intent.target = s.ball - u * (dd + 0.2);
+    intent.avoid_ball_radius = dd + 0.1;
+    intent.skill = "approach_ball";
+  }
+  write(s, out, attacker, intent);
+}
+
+void strategy_support(const Situation& s, PlayMemory& memory, std::optional<std::uint32_t> attacker,
+                      TeamIntents& out) {
+  MotionIntent tmpl = base_intent(s, "support");
+  tmpl.avoid_ball_radius = 0.3;
+  Ids reserved;
+  if (s.keeper) reserved.add(*s.keeper);
+  if (attacker) reserved.add(*attacker);
+  fill(s, memory, kAttackKey, attack_set(s), tmpl, reserved, out);
+}
+
+}  // namespace ssl::planner

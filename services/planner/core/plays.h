@@ -1,0 +1,96 @@
+// Plays: what the team does in each game situation, as motion intents for every robot. The tree's
+// actions (planner.cpp) call these; they are plain functions of the tick's Situation and the team's
+// PlayMemory (stable role choices, the placement phase), so they can be tested on their own.
+//
+// Roles, tactics, skills (seeds/001): a play (e.g. "our_free_kick") fills formation slots, each slot a
+// role ("kicker", "wall", "defender", "support", "goalkeeper"); the tactic names the team-level behaviour
+// the role belongs to; the skill is what the robot executes ("move_to", "approach_ball", "kick",
+// "dribble_to", "halt"). The goalkeeper named by the referee always keeps its role (except in HALT).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "libs/time/time.h"
+#include "services/planner/core/assignment.h"
+#include "services/planner/core/motion.h"
+#include "services/planner/core/planner.h"
+#include "services/world_model/core/field.h"
+#include "services/world_model/core/game_state.h"
+#include "services/world_model/core/types.h"
+
+namespace ssl::planner {
+
+/// Everything a play reads in one tick (TEAM frame).
+struct Situation {
+  const PlannerConfig* config = nullptr;
+  wm::Field field;
+  const wm::GameState* game = nullptr;
+  bool ball_known = false;
+  Vec2 ball = Vec2::Zero();  // the field centre when unknown
+  Vec2 ball_velocity = Vec2::Zero();
+  std::optional<wm::RefereeCommand> next_command;
+  bool we_are_blue = true;
+  bool can_place_ball = true;
+  std::optional<Vec2> placement_target;    // designated position, team frame
+  std::span<const wm::RobotState> robots;  // our visible robots (id < 16), by id
+  std::span<const wm::RobotState> enemies;
+  std::optional<std::uint32_t> keeper;  // the referee's goalkeeper id, when visible
+  Zones zones;                          // the base zones of this tick
+};
+
+/// What the team remembers between ticks for stable decisions.
+struct PlayMemory {
+  enum class PlacePhase { kApproach, kCarry, kRelease };
+
+  explicit PlayMemory(double hysteresis = 0.3)
+      : assigner(hysteresis), kicker(hysteresis), placer(hysteresis) {}
+
+  StableAssigner assigner;
+  StableChoice kicker;  // kickoff / penalty / free kick taker and the attacker in normal play
+  StableChoice placer;
+  PlacePhase place_phase = PlacePhase::kApproach;
+  std::optional<std::uint32_t> current_placer;
+};
+
+/// The intents of the whole team for one tick, indexed by robot id.
+struct TeamIntents {
+  std::string_view play = "none";
+  std::array<MotionIntent, wm::kMaxRobotsPerTeam> robots{};
+};
+
+// ---- the plays (each fills `out` for every robot in `s.robots`) ----------------------------------------
+void play_halt(const Situation& s, TeamIntents& out);
+/// STOP (and GOAL): keep the STOP limits, pre-positioning for `s.next_command`.
+void play_stop(const Situation& s, PlayMemory& memory, TeamIntents& out, std::string_view play = "stop");
+void play_timeout(const Situation& s, PlayMemory& memory, TeamIntents& out);
+void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents& out);
+void play_their_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents& out);
+void play_our_kickoff(const Situation& s, PlayMemory& memory, TeamIntents& out);
+void play_their_kickoff(const Situation& s, PlayMemory& memory, TeamIntents& out);
+void play_our_penalty(const Situation& s, PlayMemory& memory, TeamIntents& out);
+void play_their_penalty(const Situation& s, PlayMemory& memory, TeamIntents& out);
+void play_our_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& out);
+void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& out);
+
+// ---- the base strategy, in steps (the strategy subtree calls them in order) ----------------------------
+/// Picks the attacker (closest to the ball, stable) and writes the goalkeeper's intent.
+std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s, PlayMemory& memory,
+                                                              TeamIntents& out);
+/// True when the attacker stands behind the ball, aligned with the aim, close enough to kick.
+bool attacker_ready_to_kick(const Situation& s, std::uint32_t attacker);
+void strategy_kick(const Situation& s, std::uint32_t attacker, TeamIntents& out);
+void strategy_approach(const Situation& s, std::uint32_t attacker, TeamIntents& out);
+void strategy_support(const Situation& s, PlayMemory& memory, std::optional<std::uint32_t> attacker,
+                      TeamIntents& out);
+
+/// Where the attacker aims in their goal: the post side or centre with the most room from their robots.
+Vec2 shot_target(const Situation& s);
+
+/// Robot state by id, nullptr if not visible.
+const wm::RobotState* find_robot(const Situation& s, std::uint32_t id);
+
+}  // namespace ssl::planner

@@ -1,0 +1,112 @@
+// planner: one team's behaviour tree. Reads world.state (our partition), referee.state and vision.geometry;
+// writes robot.commands and planner.debug (our partition) on every tick. Flags override keys of
+// deploy/config/planner.yaml; --print-tree shows the tree (ASCII, or DOT with --dot) and exits.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "libs/common/deploy_files.h"
+#include "libs/common/shutdown.h"
+#include "libs/dds/participant.h"
+#include "libs/time/clock.h"
+#include "services/planner/adapter/planner_node.h"
+#include "services/planner/planner_config.h"
+
+namespace {
+
+struct Flags {
+  std::string config_file;
+  int domain = 0;
+  std::string interface_address;
+  std::string log_level = "info";
+  bool print_config = false;
+  bool help_config = false;
+  bool print_tree = false;
+  bool dot = false;
+  std::vector<std::string> overrides;      // from the dedicated flags (--team)
+  std::vector<std::string> set_overrides;  // from --set (kept apart: CLI11 assigns this vector whole)
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ssl::ShutdownSignal shutdown;  // before any thread exists
+  Flags flags;
+  CLI::App app{"planner: one team's behaviour tree, world.state + referee.state -> robot.commands", "planner"};
+  app.add_option("--config", flags.config_file, "YAML config (default deploy/config/planner.yaml)");
+  app.add_option("--domain", flags.domain, "DDS domain id")->check(CLI::Range(0, 232));
+  app.add_option("--interface", flags.interface_address,
+                 "multicast interface address (accepted for uniformity; the planner uses DDS only)");
+  app.add_option("--log-level", flags.log_level, "trace, debug, info, warn, error, critical or off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
+  app.add_option_function<std::string>(
+         "--team", [&flags](const std::string& team) { flags.overrides.push_back("team=" + team); },
+         "our colour: blue or yellow")
+      ->check(CLI::IsMember({"blue", "yellow"}));
+  app.add_option("--set", flags.set_overrides, "override any config key: --set planner.limits.max_speed=2.5")
+      ->take_all();
+  app.add_flag("--print-config", flags.print_config, "print the effective config and exit");
+  app.add_flag("--help-config", flags.help_config, "describe every config key and exit");
+  app.add_flag("--print-tree", flags.print_tree, "print the behaviour tree (ASCII) and exit");
+  app.add_flag("--dot", flags.dot, "with --print-tree: print the tree as Graphviz DOT")->needs("--print-tree");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  }
+
+  // --set first, so that --team wins over a --set of the same key.
+  flags.set_overrides.insert(flags.set_overrides.end(), flags.overrides.begin(), flags.overrides.end());
+
+  spdlog::set_default_logger(spdlog::default_logger()->clone("planner"));
+  spdlog::set_level(spdlog::level::from_str(flags.log_level));
+  auto logger = spdlog::default_logger();
+
+  if (flags.help_config) {
+    std::cout << ssl::planner::planner_config_help();
+    return 0;
+  }
+  if (flags.config_file.empty()) {
+    auto found = ssl::find_deploy_file("config/planner.yaml");
+    if (!found) {
+      logger->critical("{}", found.error().message);
+      return 1;
+    }
+    flags.config_file = *found;
+  }
+  auto config = ssl::planner::load_planner_config(flags.config_file, flags.set_overrides);
+  if (!config) {
+    logger->critical("{}", config.error().message);
+    return 1;
+  }
+  if (flags.print_config) {
+    std::cout << ssl::planner::planner_config_yaml(*config);
+    return 0;
+  }
+  if (flags.print_tree) {
+    const ssl::planner::Planner planner(config->core);
+    std::cout << (flags.dot ? planner.tree_dot() : planner.tree_ascii());
+    return 0;
+  }
+
+  const std::string team(ssl::to_string(config->team));
+  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "planner/" + team});
+  if (!participant) {
+    logger->critical("{}", participant.error().message);
+    return 1;
+  }
+  ssl::time::RealClock wall_clock;
+  auto node = ssl::planner::PlannerNode::create(*participant, *config, wall_clock);
+  if (!node) {
+    logger->critical("{}", node.error().message);
+    return 1;
+  }
+  logger->info("team {}, domain {}, ticking {}", team, flags.domain,
+               config->tick_mode == ssl::planner::TickMode::kOnWorldState
+                   ? fmt::format("on every world.state, at most {} Hz", config->max_rate)
+                   : fmt::format("at {} Hz", config->tick_rate));
+  node->run(shutdown);
+  logger->info("stopping");
+  return 0;
+}

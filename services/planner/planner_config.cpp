@@ -1,0 +1,96 @@
+#include "services/planner/planner_config.h"
+
+#include "libs/config/config.h"
+
+namespace ssl::planner {
+namespace {
+
+using config::field;
+using config::Fields;
+using config::nested;
+
+Fields<MotionLimits> limit_fields() {
+  return {
+      field("max_speed", &MotionLimits::max_speed).unit("m/s").range(0.1, 10).doc("normal play"),
+      field("max_acceleration", &MotionLimits::max_acceleration).unit("m/s^2").range(0.1, 50),
+      field("max_angular_speed", &MotionLimits::max_angular_speed).unit("rad/s").range(0.1, 100),
+      field("max_angular_acceleration", &MotionLimits::max_angular_acceleration).unit("rad/s^2").range(0.1, 1000),
+  };
+}
+
+Fields<PlannerConfig> core_fields() {
+  return Fields<PlannerConfig>{
+      nested("limits", &PlannerConfig::limits, limit_fields()),
+      field("robot_radius", &PlannerConfig::robot_radius).unit("m").range(0.05, 0.2),
+      field("stop_speed", &PlannerConfig::stop_speed).unit("m/s").range(0.1, 1.5)
+          .doc("rules: at most 1.5 m/s during STOP"),
+      field("stop_speed_margin", &PlannerConfig::stop_speed_margin).unit("m/s").range(0, 1)
+          .doc("how far below stop_speed we aim"),
+      field("ball_keep_away", &PlannerConfig::ball_keep_away).unit("m").range(0.5, 2)
+          .doc("rules: distance to the ball during STOP and their restarts"),
+      field("keep_away_margin", &PlannerConfig::keep_away_margin).unit("m").range(0, 1),
+      field("defense_area_keep_away", &PlannerConfig::defense_area_keep_away).unit("m").range(0.2, 1)
+          .doc("rules: distance to the opponent defense area during STOP"),
+      field("placement_tolerance", &PlannerConfig::placement_tolerance).unit("m").range(0.01, 0.15)
+          .doc("rules: ball placement success radius"),
+      field("penalty_line_behind", &PlannerConfig::penalty_line_behind).unit("m").range(0.4, 3)
+          .doc("rules: other robots at least this far behind the ball at a penalty"),
+  }
+      .check([](const PlannerConfig& c) -> Status {
+        if (c.stop_speed_margin >= c.stop_speed) return Error{"stop_speed_margin must be below stop_speed"};
+        if (c.stop_speed > c.limits.max_speed) return Error{"stop_speed must not exceed limits.max_speed"};
+        return {};
+      });
+}
+
+Fields<PlannerServiceConfig> service_fields() {
+  return Fields<PlannerServiceConfig>{
+      field("team", &PlannerServiceConfig::team)
+          .values({{"blue", TeamColor::kBlue}, {"yellow", TeamColor::kYellow}})
+          .doc("our colour: the partition of world.state, robot.commands and planner.debug"),
+      field("tick_mode", &PlannerServiceConfig::tick_mode)
+          .values({{"on_world_state", TickMode::kOnWorldState}, {"fixed_rate", TickMode::kFixedRate}})
+          .doc("on_world_state: tick on every new world.state, at most max_rate Hz; fixed_rate: tick_rate Hz"),
+      field("tick_rate", &PlannerServiceConfig::tick_rate).unit("Hz").range(1, 1000).doc("fixed_rate only"),
+      field("max_rate", &PlannerServiceConfig::max_rate).unit("Hz").range(1, 1000).doc("on_world_state only"),
+      field("stale_world_timeout", &PlannerServiceConfig::stale_world_timeout).unit("s").range(0.01, 10)
+          .doc("without world.state this long: no ticks, nothing published, health WARN"),
+      field("default_division", &PlannerServiceConfig::default_division)
+          .values({{"a", Division::kA}, {"b", Division::kB}})
+          .doc("the field until vision.geometry arrives"),
+      nested("planner", &PlannerServiceConfig::core, core_fields()),
+  };
+}
+
+}  // namespace
+
+wm::FieldSize division_field(Division division) {
+  wm::FieldSize field;  // division A
+  if (division == Division::kB) {
+    field.field_length = 9.0;
+    field.field_width = 6.0;
+    field.goal_width = 1.0;
+    field.penalty_area_depth = 1.0;
+    field.penalty_area_width = 2.0;
+    field.goal_center_to_penalty_mark = 6.0;
+  }
+  return field;
+}
+
+Result<PlannerServiceConfig> load_planner_config(const std::string& path, const std::vector<std::string>& overrides) {
+  auto loaded = config::load_file(path, service_fields(), overrides);
+  if (!loaded) return loaded;
+  PlannerServiceConfig& c = *loaded;
+  c.core.team = c.team;
+  c.core.tick_period = 1.0 / (c.tick_mode == TickMode::kFixedRate ? c.tick_rate : c.max_rate);
+  c.core.default_field = division_field(c.default_division);
+  return loaded;
+}
+
+std::string planner_config_yaml(const PlannerServiceConfig& config) {
+  return config::to_yaml(config, service_fields());
+}
+
+std::string planner_config_help() { return config::describe(service_fields()); }
+
+}  // namespace ssl::planner

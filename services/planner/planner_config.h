@@ -1,0 +1,39 @@
+// The planner service's configuration (deploy/config/planner.yaml): a typed struct validated once at
+// start; flags (--team) and --set override single keys. Units per key in the schema (planner_config.cpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "libs/common/result.h"
+#include "services/planner/core/planner.h"
+
+namespace ssl::planner {
+
+/// When the planner ticks.
+///  kOnWorldState: on every new world.state sample (the vision rate), at most max_rate Hz (samples that
+///                 arrive sooner are folded into the next tick);
+///  kFixedRate:    at tick_rate Hz with the newest world.state (none while it is stale).
+enum class TickMode { kOnWorldState, kFixedRate };
+
+enum class Division { kA, kB };
+
+struct PlannerServiceConfig {
+  TeamColor team = TeamColor::kBlue;
+  TickMode tick_mode = TickMode::kOnWorldState;
+  double tick_rate = 100;                 // Hz, kFixedRate
+  double max_rate = 200;                  // Hz, kOnWorldState
+  double stale_world_timeout = 0.1;       // s without world.state: no ticks, health WARN "no world state"
+  Division default_division = Division::kA;  // field until vision.geometry arrives
+  PlannerConfig core;                     // team, tick_period and default_field are filled from the above
+};
+
+/// The rulebook's field of a division (metres).
+wm::FieldSize division_field(Division division);
+
+Result<PlannerServiceConfig> load_planner_config(const std::string& path, const std::vector<std::string>& overrides);
+std::string planner_config_yaml(const PlannerServiceConfig& config);
+/// Every key with its type, unit, limits and documentation (for --help-config).
+std::string planner_config_help();
+
+}  // namespace ssl::planner

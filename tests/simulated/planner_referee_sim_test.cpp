@@ -1,0 +1,1059 @@
+// Referee scenarios in LOCKSTEP with the real cores: the Bullet simulator (6 v 6, `realistic` vision noise,
+// division B and A fields), one WorldModel per team fed with the simulator's camera frames, its dribbler
+// feedback and the commands its team sent, one Planner per team (blue and yellow, each with its own colour)
+// and a scripted referee both planners see. Every 10 ms tick: referee -> world models -> planners ->
+// simulator commands (local velocities, flat kick / chip, dribbler) -> 10 ms of simulated time -> camera
+// frames into the world models -> validation functions. Simulated time only: no threads, no sleeps, no DDS;
+// the same seed gives the same match (PLANNER_SIM_SEED=n runs another seed).
+//
+// The VALIDATION FUNCTIONS (seeds/003) read the simulator's GROUND TRUTH (its snapshot after each tick),
+// never the world model: a planner that believes it obeys the rules but does not is caught. Two kinds:
+//   - Always: "for all time", a predicate that must hold at every tick of a phase;
+//   - Eventually: "must happen", a predicate that must become true (for a hold time) before a deadline.
+// A failing check reports how many ticks failed and the first failure (time, robot, value). Each scenario
+// prints one "[figures]" line (closest approach, top speed, placement error and time, ...).
+//
+// Distances are measured as the league's automatic referees do: robot CENTRE to ball centre against the rule
+// distance PLUS the robot radius (0.09 m), i.e. the robot's whole body is outside the 0.5 m circle; the same
+// for the opponent defense area (0.2 m), the placement stadium (0.5 m) and "1 m behind the ball". No further
+// tolerance is subtracted: ground truth is exact, and the planner aims 0.1 m beyond each limit
+// (keep_away_margin), which is its budget for world-model error and controller overshoot.
+//
+// Both teams run our planner, so each scenario tests the restart's "ours" rules on one team and its
+// "theirs" rules on the other; with both colours as "us" every branch runs for both colours, both sides.
+//   Halt*            normal play with both teams sprinting (up to 3 m/s), then HALT: every robot < 0.05 m/s
+//                    after a brake allowance, and the ball is never sped up.
+//   Stop*            STOP from crowded balls (in front of their defense area; next to it with our free kick
+//                    announced; inside our defense area) and a rolling ball: after 2 s grace every robot
+//                    <= 1.5 m/s, >= 0.5 m from the ball, >= 0.2 m from the opponent defense area.
+//   TheirFreeKick*/TheirThrowIn*   STOP (next: their free kick) with ours crowding the ball, then DIRECT_FREE
+//                    theirs: STOP rules, then ours >= 0.5 m from the ball and everybody >= 0.2 m from the
+//                    opponent defense area until the ball is in play; their kicker plays it within 6 s and
+//                    does not touch it twice.
+//   Kickoff*         STOP -> PREPARE_KICKOFF ours -> NORMAL_START, starting with one robot of each team on
+//   the
+//                    wrong side: nobody touches the ball before NORMAL_START; ours (but the kicker) and all
+//                    of theirs in their own half outside the centre circle until the ball is in play; our
+//                    kicker kicks within 3 s and does not touch the ball twice.
+//   OurBallPlacement*  BALL_PLACEMENT ours (next: our free kick), several placements: the ball at rest within
+//                    0.15 m of the target with no robot within 0.05 m by 15 s (30 s, the rules' time, for the
+//                    field-long one); after 2 s grace our other robots >= 0.5 m from the ball, theirs >= 0.5
+//                    m from the ball and from the ball -> target segment, everybody <= 1.5 m/s.
+//   Penalty*         STOP -> PREPARE_PENALTY ours -> NORMAL_START: our kicker within 0.4 m of the mark but
+//   not
+//                    touching, every other robot (both teams, but their keeper) >= 1 m behind the ball, their
+//                    keeper touching its goal line between the posts; our kicker shoots within 3 s.
+//   PlannerSimDeterminism  the same seed twice: bit-identical final ground truth; another seed differs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "libs/common/team.h"
+#include "services/planner/core/planner.h"
+#include "services/planner/core/planner_test_util.h"
+#include "services/simulator/core/simulator.h"
+#include "services/world_model/core/sim_harness.h"
+#include "services/world_model/core/team_frame.h"
+#include "services/world_model/core/world_model.h"
+
+namespace ssl::planner {
+namespace {
+
+using testing::Restart;
+using testing::Side;
+using wm::RefereeCommand;
+
+constexpr std::uint32_t kRobots = 6;  // per team (division B)
+constexpr std::uint64_t kDefaultSeed = 20260301;
+/// The seed of every scenario: fixed, so a run is reproducible; PLANNER_SIM_SEED=n explores another one.
+std::uint64_t seed() {
+  const char* env = std::getenv("PLANNER_SIM_SEED");
+  return env && *env ? std::strtoull(env, nullptr, 10) : kDefaultSeed;
+}
+constexpr double kTick = 0.01;  // s, planner period and lockstep step
+constexpr double kR = 0.09;     // robot radius (simulator RobotSpec and rules' envelope)
+constexpr double kBallRadius = 0.0215;
+constexpr double kStopSpeed = 1.5;            // m/s, rules: STOP
+constexpr double kBallKeepOut = 0.5 + kR;     // robot centre to ball centre (body outside 0.5 m)
+constexpr double kDefenseKeepOut = 0.2 + kR;  // robot centre to opponent defense area
+constexpr double kGrace = 2.0;                // s, rules: grace after STOP / a restart before distances count
+constexpr double kInPlayMove = 0.05;          // m, rules: the ball is in play after moving this far
+constexpr double kHaltSpeed = 0.05;           // m/s, "stopped"
+constexpr double kWarmUp = 0.3;               // s of HALT at the start: the world models lock on
+
+/// One parameter of the suites: our colour and side, and the division's field.
+struct Case {
+  Side side;
+  bool division_a = false;
+  sim::FieldGeometry field() const {
+    return division_a ? sim::FieldGeometry::division_a() : sim::FieldGeometry::division_b();
+  }
+  std::string name() const { return side.name() + (division_a ? "_DivA" : "_DivB"); }
+};
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name(); }
+
+std::vector<Case> all_cases() {
+  std::vector<Case> cases;
+  for (bool a : {false, true}) {
+    for (const Side& side : testing::all_sides()) cases.push_back({side, a});
+  }
+  return cases;
+}
+
+wm::FieldSize field_size(const sim::FieldGeometry& f) {
+  return {.field_length = f.field_length,
+          .field_width = f.field_width,
+          .goal_width = f.goal_width,
+          .goal_depth = f.goal_depth,
+          .boundary_width = f.boundary_width,
+          .penalty_area_depth = f.penalty_area_depth,
+          .penalty_area_width = f.penalty_area_width,
+          .center_circle_radius = f.center_circle_radius,
+          .goal_center_to_penalty_mark = f.goal_center_to_penalty_mark};
+}
+
+// ---- the lockstep match -----------------------------------------------------------------------------------
+
+/// One robot of the ground truth, in OUR team frame.
+struct TrueRobot {
+  bool ours = false;
+  std::uint32_t id = 0;
+  Vec2 position = Vec2::Zero();
+  Vec2 velocity = Vec2::Zero();
+  bool dribbler_contact = false;
+  bool touching = false;  // touched the ball during the last tick (see refresh_truth)
+  double speed() const { return velocity.norm(); }
+  std::string name() const { return std::string(ours ? "our " : "their ") + std::to_string(id); }
+};
+
+/// The simulator's ground truth after a tick, in OUR team frame.
+struct Truth {
+  Vec2 ball = Vec2::Zero();
+  Vec2 ball_velocity = Vec2::Zero();
+  std::vector<TrueRobot> robots;
+};
+
+struct RefereeEvent {
+  double at = 0;  // s since the start
+  RefereeCommand command = RefereeCommand::kHalt;
+  std::optional<RefereeCommand> next;
+  std::optional<Vec2> designated;  // OUR team frame
+};
+
+/// The two team stacks and the simulator, stepped together. Positions given and returned in OUR frame.
+class LockstepMatch {
+ public:
+  LockstepMatch(const Case& c, std::uint64_t seed)
+      : case_(c), side_(c.side), field_(c.field()), us_frame_(c.side.frame()), sim_(options(field_, seed)) {
+    const Side& side = c.side;
+    for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
+      Team& t = team_of(team);
+      t.color = team;
+      wm::WorldModelConfig model_config;
+      model_config.team = team;
+      t.model.emplace(model_config);
+      t.model->on_geometry(wm::testing::from_sim(sim_.geometry()));
+      PlannerConfig planner_config;
+      planner_config.team = team;
+      planner_config.default_field = field_size(field_);
+      t.planner.emplace(planner_config);
+    }
+    referee_.info.blue_team_on_positive_half = side.blue_on_positive_half;
+    referee_.info.blue_goalkeeper = 0;
+    referee_.info.yellow_goalkeeper = 0;
+    set_command(RefereeCommand::kHalt, std::nullopt, std::nullopt);
+  }
+
+  TeamColor us() const { return side_.us; }
+  const sim::FieldGeometry& field() const { return field_; }
+  const Case& test_case() const { return case_; }
+  double half_length() const { return field_.field_length / 2; }
+  TeamColor them() const { return opponent(side_.us); }
+  double time() const { return ticks_ * kTick; }
+  const Truth& truth() const { return truth_; }
+  const sim::Simulator& sim() const { return sim_; }
+
+  /// Teleports: robot `id` of us / them, ball. Our team frame; heading in our team frame.
+  void place(bool ours, std::uint32_t id, const Vec2& p, double heading) {
+    const Vec2 v = us_frame_.to_vision_point(p);
+    sim::ControlRequest request;
+    request.robots.push_back({.key = {ours ? us() : them(), id},
+                              .x = v.x(),
+                              .y = v.y(),
+                              .orientation = us_frame_.to_vision_angle(heading),
+                              .vx = 0,
+                              .vy = 0,
+                              .angular = 0,
+                              .present = true});
+    EXPECT_TRUE(sim_.apply(request).empty());
+  }
+  void place_ball(const Vec2& p) {
+    const Vec2 v = us_frame_.to_vision_point(p);
+    sim::ControlRequest request;
+    request.ball = sim::BallTeleport{.x = v.x(), .y = v.y(), .z = kBallRadius};
+    EXPECT_TRUE(sim_.apply(request).empty());
+    refresh_truth();
+  }
+
+  /// Sets the ball rolling where it is with velocity `v` (our frame).
+  void roll_ball(const Vec2& v) {
+    const Vec2 w = us_frame_.vector(v);
+    const sim::WorldSnapshot snap = sim_.snapshot();
+    sim::ControlRequest request;
+    request.ball = sim::BallTeleport{.x = snap.ball.position.x(),
+                                     .y = snap.ball.position.y(),
+                                     .z = kBallRadius,
+                                     .vx = w.x(),
+                                     .vy = w.y(),
+                                     .vz = 0,
+                                     .roll = true};
+    EXPECT_TRUE(sim_.apply(request).empty());
+  }
+  void script(std::vector<RefereeEvent> events) { script_ = std::move(events); }
+
+  /// One lockstep tick: referee, both stacks, 10 ms of simulation, camera frames, ground truth.
+  void tick() {
+    while (next_event_ < script_.size() && script_[next_event_].at <= time() + 1e-9) {
+      const RefereeEvent& e = script_[next_event_++];
+      set_command(e.command, e.next, e.designated);
+    }
+    const time::Timestamp now = sim_.snapshot().time;
+    for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) step_team(team_of(team), now);
+    const sim::StepOutput out = sim_.step(std::chrono::milliseconds(10));
+    const time::Timestamp after = sim_.snapshot().time;
+    for (const sim::DetectionFrame& frame : out.frames) {
+      const wm::DetectionFrame converted = wm::testing::from_sim(frame);
+      for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow})
+        team_of(team).model->on_detection(converted, after);
+    }
+    for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
+      for (const sim::RobotFeedback& f : sim_.feedback(team)) {
+        team_of(team).model->on_feedback({.id = f.id, .ball_in_dribbler = f.dribbler_ball_contact}, after);
+      }
+    }
+    ++ticks_;
+    refresh_truth();
+  }
+
+  /// The last planner output of a team (debug: roles, play).
+  const PlannerOutput& output(bool ours) const { return ours ? team_of(us()).out : team_of(them()).out; }
+
+ private:
+  struct Team {
+    TeamColor color = TeamColor::kBlue;
+    std::optional<wm::WorldModel> model;
+    std::optional<Planner> planner;
+    PlannerOutput out;
+    std::vector<sim::RobotCommandFor> commands;
+    std::vector<wm::RobotCommand> sent;
+  };
+
+  static sim::SimulatorOptions options(const sim::FieldGeometry& field, std::uint64_t seed) {
+    sim::SimulatorOptions o;
+    o.field = field;
+    o.robots_per_team = kRobots;
+    o.seed = seed;
+    o.vision.realism = sim::RealismConfig::realistic();
+    return o;
+  }
+
+  Team& team_of(TeamColor c) { return c == TeamColor::kBlue ? blue_ : yellow_; }
+  const Team& team_of(TeamColor c) const { return c == TeamColor::kBlue ? blue_ : yellow_; }
+
+  void set_command(RefereeCommand command, std::optional<RefereeCommand> next,
+                   std::optional<Vec2> designated) {
+    ++referee_.info.command_counter;
+    referee_.info.command = command;
+    referee_.info.next_command = next;
+    referee_.info.designated_position.reset();
+    if (designated) referee_.info.designated_position = us_frame_.to_vision_point(*designated);
+  }
+
+  void step_team(Team& t, time::Timestamp now) {
+    t.model->on_referee(referee_.info, now);
+    PlannerInputs inputs{.world = t.model->state(now), .referee = referee_, .field = t.model->field().size()};
+    t.planner->step(inputs, now, t.out);
+    // Robots the planner did not command (not visible) stop, as robot_link does with stale commands.
+    t.commands.clear();
+    t.sent.clear();
+    for (std::uint32_t id = 0; id < kRobots; ++id) {
+      sim::RobotCommandFor c{.id = id, .command = {}};
+      c.command.move = sim::RobotCommand::Move::kLocalVelocity;
+      t.commands.push_back(c);
+    }
+    for (const RobotCommand& c : t.out.commands) {
+      if (c.id >= kRobots) continue;
+      sim::RobotCommand& s = t.commands[c.id].command;
+      s.velocity = sim::Vec3(c.forward, c.left, c.angular);
+      if (c.kick == KickType::kFlat) {
+        s.kick_speed = c.kick_speed;
+        s.kick_angle = 0;
+      } else if (c.kick == KickType::kChip) {
+        s.kick_speed = c.kick_speed;
+        s.kick_angle = c.chip_angle;
+      }
+      s.dribbler_rpm = c.dribbler_rpm;
+    }
+    EXPECT_TRUE(sim_.set_commands(t.color, t.commands).empty());
+    for (const sim::RobotCommandFor& c : t.commands) {
+      t.sent.push_back({c.id, c.command.velocity.x(), c.command.velocity.y(), c.command.velocity.z()});
+    }
+    t.model->on_commands(t.sent, now);
+  }
+
+  void refresh_truth() {
+    const sim::WorldSnapshot snap = sim_.snapshot();
+    const Vec2 previous_velocity = truth_.ball_velocity;
+    truth_.ball = us_frame_.point(snap.ball.position.head<2>());
+    truth_.ball_velocity = us_frame_.vector(snap.ball.velocity.head<2>());
+    truth_.robots.clear();
+    for (const sim::RobotState& r : snap.robots) {
+      truth_.robots.push_back({.ours = r.key.team == us(),
+                               .id = r.key.id,
+                               .position = us_frame_.point(r.position),
+                               .velocity = us_frame_.vector(r.velocity),
+                               .dribbler_contact = r.ball_contact});
+    }
+    // Touches. Sampling every 10 ms misses a fast ball bouncing off a robot (4 cm per tick), so besides
+    // contact now (dribbler contact, or the ball centre within radius + ball radius + 3 mm of the robot
+    // centre: the round body, conservative at the flat front) a sudden change of the ball's velocity
+    // (> 0.3 m/s in a tick: 10x the carpet's sliding friction) is a touch by the nearest robot when the
+    // ball could have reached it during the tick.
+    const bool deflected = (truth_.ball_velocity - previous_velocity).norm() > 0.3;
+    const double reach =
+        kR + kBallRadius + (previous_velocity.norm() + truth_.ball_velocity.norm()) * kTick + 0.01;
+    TrueRobot* nearest = nullptr;
+    for (TrueRobot& r : truth_.robots) {
+      const double d = (r.position - truth_.ball).norm();
+      r.touching = r.dribbler_contact || d <= kR + kBallRadius + 0.003;
+      if (!nearest || d < (nearest->position - truth_.ball).norm()) nearest = &r;
+    }
+    if (deflected && nearest && (nearest->position - truth_.ball).norm() <= reach) nearest->touching = true;
+  }
+
+  Case case_;
+  Side side_;
+  sim::FieldGeometry field_;
+  wm::TeamFrame us_frame_;
+  sim::Simulator sim_;
+  Team blue_;
+  Team yellow_;
+  RefereeInput referee_;
+  std::vector<RefereeEvent> script_;
+  std::size_t next_event_ = 0;
+  std::int64_t ticks_ = 0;
+  Truth truth_;
+};
+
+// ---- validation functions ---------------------------------------------------------------------------------
+
+/// A "for all time" check: `holds` must be true at every tick it is evaluated.
+class Always {
+ public:
+  explicit Always(std::string name) : name_(std::move(name)) {}
+  void require(bool holds, double t, const std::function<std::string()>& detail) {
+    ++evaluated_;
+    if (holds) return;
+    if (failures_++ == 0) first_ = "t=" + fmt(t) + " s: " + detail();
+  }
+  void report() const {
+    EXPECT_GT(evaluated_, 0) << name_ << ": never evaluated (scenario too short?)";
+    EXPECT_EQ(failures_, 0) << name_ << " failed at " << failures_ << " of " << evaluated_ << " ticks; first "
+                            << first_;
+  }
+  static std::string fmt(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4f", v);
+    return buf;
+  }
+
+ private:
+  std::string name_;
+  int evaluated_ = 0;
+  int failures_ = 0;
+  std::string first_;
+};
+
+/// A "must happen eventually" check: `happened` must become true (for `hold` seconds in a row) by `deadline`.
+class Eventually {
+ public:
+  Eventually(std::string name, double deadline, double hold = 0)
+      : name_(std::move(name)), deadline_(deadline), hold_(hold) {}
+  /// Returns true once satisfied.
+  bool update(bool now_true, double t) {
+    if (done_) return true;
+    if (!now_true) {
+      since_.reset();
+      return false;
+    }
+    if (!since_) since_ = t;
+    if (t - *since_ >= hold_ - 1e-9 && *since_ <= deadline_) {
+      done_ = true;
+      at_ = *since_;
+    }
+    return done_;
+  }
+  bool done() const { return done_; }
+  double at() const { return at_; }
+  void report(const std::string& detail = {}) const {
+    EXPECT_TRUE(done_) << name_ << " did not happen within " << deadline_ << " s " << detail;
+  }
+
+ private:
+  std::string name_;
+  double deadline_;
+  double hold_;
+  bool done_ = false;
+  double at_ = std::numeric_limits<double>::quiet_NaN();
+  std::optional<double> since_;
+};
+
+/// Robot-centre distance to a team's OPPONENT defense area (our frame: theirs at +x, ours at -x).
+double distance_to_opponent_defense_area(const sim::FieldGeometry& f, const TrueRobot& r) {
+  const wm::Field field(field_size(f));
+  return testing::distance_to_their_defense_area(field, r.ours ? r.position : Vec2(-r.position));
+}
+
+/// Rules' STOP checks for every robot of both teams (after the grace time), plus figures.
+struct StopRules {
+  Always speed{"STOP: every robot <= 1.5 m/s"};
+  Always ball{"STOP: every robot centre >= 0.5 m + radius from the ball"};
+  Always defense{"STOP: every robot >= 0.2 m from the opponent defense area"};
+  double min_ball = 1e9;
+  double max_speed = 0;
+  double min_defense = 1e9;
+
+  void check(const sim::FieldGeometry& field, const Truth& truth, double t) {
+    for (const TrueRobot& r : truth.robots) {
+      const double d = (r.position - truth.ball).norm();
+      const double dd = distance_to_opponent_defense_area(field, r);
+      min_ball = std::min(min_ball, d);
+      max_speed = std::max(max_speed, r.speed());
+      min_defense = std::min(min_defense, dd);
+      speed.require(r.speed() <= kStopSpeed, t,
+                    [&] { return r.name() + " at " + Always::fmt(r.speed()) + " m/s"; });
+      ball.require(d >= kBallKeepOut, t,
+                   [&] { return r.name() + " " + Always::fmt(d) + " m from the ball"; });
+      defense.require(dd >= kDefenseKeepOut, t,
+                      [&] { return r.name() + " " + Always::fmt(dd) + " m from the opponent defense area"; });
+    }
+  }
+  void report() const {
+    speed.report();
+    ball.report();
+    defense.report();
+  }
+};
+
+void print_figures(const std::string& scenario, const Case& side, const std::string& figures) {
+  std::printf("[figures] %-14s %-22s %s\n", scenario.c_str(), side.name().c_str(), figures.c_str());
+  std::fflush(stdout);
+}
+
+bool touches(const TrueRobot& r) { return r.touching; }
+
+/// The robot of the kicking team nearest the ball: the kicker while the restart is being taken.
+std::optional<TrueRobot> nearest(const Truth& truth, bool ours) {
+  std::optional<TrueRobot> best;
+  for (const TrueRobot& r : truth.robots) {
+    if (r.ours != ours) continue;
+    if (!best || (r.position - truth.ball).norm() < (best->position - truth.ball).norm()) best = r;
+  }
+  return best;
+}
+
+/// Rules (double touch): after a kickoff / free kick / penalty the kicker may not touch the ball again
+/// until another robot touched it. Runs the match on for `seconds` after the kick by `kicker`; returns a
+/// figure: the kicker's closest approach to the ball afterwards, and whether another robot touched it.
+std::string check_no_double_touch(LockstepMatch& m, const TrueRobot& kicker, double seconds) {
+  Always double_touch{"double touch: the kicker does not touch the ball again before another robot"};
+  bool left = false;  // the ball has left the kicker (the kick itself is one touch)
+  const double end = m.time() + seconds;
+  double min_gap = 1e9;
+  while (m.time() < end) {
+    m.tick();
+    const Truth& truth = m.truth();
+    bool other = false;
+    for (const TrueRobot& r : truth.robots) {
+      const bool is_kicker = r.ours == kicker.ours && r.id == kicker.id;
+      if (!is_kicker) {
+        other |= touches(r);
+        continue;
+      }
+      const double gap = (r.position - truth.ball).norm() - kR - kBallRadius;
+      if (!left) {
+        left = gap > 0.02;
+        continue;
+      }
+      min_gap = std::min(min_gap, gap);
+      double_touch.require(!touches(r), m.time(), [&] { return r.name() + " touched it again"; });
+    }
+    if (other) break;  // somebody else played the ball: the kicker may touch it again
+  }
+  double_touch.report();
+  return "kicker's closest gap after its kick " + Always::fmt(min_gap) + " m" +
+         (m.time() < end ? " (then another robot played the ball)" : "");
+}
+
+/// The default layout (our frame): both teams spread over their halves, keepers in goal.
+void default_layout(LockstepMatch& m) {
+  const double hl = m.half_length();
+  const Vec2 ours[kRobots] = {{-hl + 0.3, 0}, {-2.0, 1.0},  {-2.0, -1.0},
+                              {-1.0, 2.0},    {-1.0, -2.0}, {-0.6, 0.3}};
+  const Vec2 theirs[kRobots] = {{hl - 0.3, 0}, {2.0, 1.2}, {2.0, -0.8}, {1.0, 2.2}, {1.0, -1.8}, {0.7, -0.4}};
+  for (std::uint32_t id = 0; id < kRobots; ++id) {
+    m.place(true, id, ours[id], 0.0);
+    m.place(false, id, theirs[id], M_PI);
+  }
+}
+
+class PlannerSimReferee : public ::testing::TestWithParam<Case> {
+ protected:
+  const Case& param() const { return GetParam(); }
+  const Side& side() const { return GetParam().side; }
+  RefereeCommand ours(Restart r) const { return testing::command_for(r, side().us); }
+};
+
+// ---- HALT -------------------------------------------------------------------------------------------------
+
+TEST_P(PlannerSimReferee, HaltStopsEveryRobotWithinTheBrakeAllowance) {
+  LockstepMatch m(param(), seed());
+  // Both teams start in the wrong half (mirrored layout), so that normal play sends them sprinting back
+  // at up to 3 m/s when HALT comes.
+  const double hl = m.half_length();
+  const Vec2 ours[kRobots] = {{hl - 1.0, 0}, {2.0, 1.0}, {2.0, -1.0}, {1.0, 2.0}, {1.0, -2.0}, {0.6, 0.3}};
+  for (std::uint32_t id = 0; id < kRobots; ++id) {
+    m.place(true, id, ours[id], M_PI);
+    m.place(false, id, -ours[id] + Vec2(0, 0.3), 0.0);
+  }
+  m.place_ball({0.8, -0.6});
+  const double halt_at = kWarmUp + 1.6;
+  m.script({{kWarmUp, RefereeCommand::kForceStart}, {halt_at, RefereeCommand::kHalt}});
+  // The brake allowance is physical, not a tolerance: the simulated robots brake at acc_brake_absolute_max
+  // (4 m/s^2), so a robot at v needs v / 4 s; plus 2 ticks (one planner tick, one command in flight) and
+  // 0.1 s for the velocity controller to settle below 0.05 m/s. A fixed 0.3 s would hold only below
+  // ~0.7 m/s, so the allowance is computed from the fastest robot at the HALT instant (0.87 s from 3 m/s).
+  const double brake = m.sim().options().blue_spec.limits.acc_brake_absolute_max;
+  Always stopped{"HALT: every robot < 0.05 m/s after the brake allowance"};
+  Always no_kick{"HALT: nobody kicks or pushes the ball (its speed never rises)"};
+  std::optional<double> ball_speed_at_halt;
+  double speed_at_halt = 0;
+  double allowance = 0.3;
+  double last_moving = 0;
+  while (m.time() < halt_at + 1.5) {
+    m.tick();
+    const Truth& truth = m.truth();
+    const double t = m.time();
+    if (t <= halt_at + 1e-9) {
+      speed_at_halt = 0;
+      for (const TrueRobot& r : truth.robots) speed_at_halt = std::max(speed_at_halt, r.speed());
+      allowance = std::max(0.3, speed_at_halt / brake + 2 * kTick + 0.1);
+      continue;
+    }
+    for (const TrueRobot& r : truth.robots) {
+      if (r.speed() >= kHaltSpeed) last_moving = std::max(last_moving, t - halt_at);
+      if (t - halt_at < allowance) continue;
+      stopped.require(r.speed() < kHaltSpeed, t,
+                      [&] { return r.name() + " at " + Always::fmt(r.speed()) + " m/s"; });
+    }
+    // A ball kicked before HALT may still roll; after HALT it must never speed up (nobody kicks or
+    // pushes it). 0.05 m/s: simulator noise of a rolling ball bouncing off a stopped robot or the wall.
+    if (!ball_speed_at_halt) ball_speed_at_halt = truth.ball_velocity.norm();
+    no_kick.require(truth.ball_velocity.norm() <= *ball_speed_at_halt + 0.05, t, [&] {
+      return "ball at " + Always::fmt(truth.ball_velocity.norm()) + " m/s, was " +
+             Always::fmt(*ball_speed_at_halt);
+    });
+    ball_speed_at_halt = std::min(*ball_speed_at_halt, truth.ball_velocity.norm());
+  }
+  stopped.report();
+  no_kick.report();
+  // Not vacuous: the robots were moving when HALT came.
+  EXPECT_GT(speed_at_halt, 1.0);
+  print_figures("Halt", param(),
+                "max speed at HALT " + Always::fmt(speed_at_halt) + " m/s, allowance " +
+                    Always::fmt(allowance) + " s, all < 0.05 m/s after " + Always::fmt(last_moving) + " s");
+}
+
+// ---- STOP -------------------------------------------------------------------------------------------------
+
+/// STOP from the current layout: 2 s grace, then 4 s of the STOP rules for every robot of both teams.
+void run_stop(LockstepMatch& m, const char* scenario, std::optional<RefereeCommand> next) {
+  const double stop_at = kWarmUp;
+  m.script({{stop_at, RefereeCommand::kStop, next}});
+  StopRules rules;
+  double max_speed_grace = 0;
+  while (m.time() < stop_at + kGrace + 4.0) {
+    m.tick();
+    const double t = m.time();
+    if (t < stop_at) continue;
+    if (t - stop_at < kGrace) {
+      for (const TrueRobot& r : m.truth().robots) max_speed_grace = std::max(max_speed_grace, r.speed());
+      continue;
+    }
+    rules.check(m.field(), m.truth(), t);
+  }
+  rules.report();
+  print_figures(scenario, m.test_case(),
+                "min ball dist " + Always::fmt(rules.min_ball) + " m, max speed " +
+                    Always::fmt(rules.max_speed) + " m/s (grace " + Always::fmt(max_speed_grace) +
+                    "), min opp. defense dist " + Always::fmt(rules.min_defense) + " m");
+}
+
+TEST_P(PlannerSimReferee, StopCrowdedBallInFrontOfTheirDefenseArea) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  // A crowded ball 0.6 m in front of THEIR defense area: three of ours and two of theirs within 0.3 m,
+  // one of ours inside their defense area (it must leave it by 0.2 m).
+  const double hl = m.half_length();
+  const Vec2 ball(hl - m.field().penalty_area_depth - 0.6, -0.5);
+  m.place_ball(ball);
+  m.place(true, 1, ball + Vec2(-0.2, 0.05), 0.0);
+  m.place(true, 2, ball + Vec2(0.02, 0.22), -M_PI / 2);
+  m.place(true, 3, {hl - 0.5, 0.4}, 0.0);
+  m.place(true, 5, ball + Vec2(0.05, -0.22), M_PI / 2);
+  m.place(false, 1, ball + Vec2(0.22, 0.0), M_PI);
+  m.place(false, 2, ball + Vec2(0.2, -0.25), M_PI);
+  run_stop(m, "Stop", std::nullopt);
+}
+
+TEST_P(PlannerSimReferee, StopBeforeOurFreeKickNextToTheirDefenseArea) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  // The ball 0.25 m in front of their defense area's corner, our free kick announced: our kicker stages
+  // behind the ball and the attack formation moves up, all outside the 0.2 m band around their area.
+  const double hl = m.half_length();
+  const sim::FieldGeometry& field = m.field();
+  const Vec2 ball(hl - field.penalty_area_depth - 0.25, field.penalty_area_width / 2 - 0.2);
+  m.place_ball(ball);
+  m.place(true, 1, ball + Vec2(-0.3, 0.0), 0.0);
+  m.place(true, 2, {hl - 0.4, -0.3}, 0.0);
+  m.place(true, 5, ball + Vec2(0.1, 0.25), 0.0);
+  m.place(false, 1, ball + Vec2(0.25, -0.1), M_PI);
+  run_stop(m, "StopOurFreeKick", testing::command_for(Restart::kFreeKick, m.us()));
+}
+
+TEST_P(PlannerSimReferee, StopWithTheBallRollingThroughOurTeam) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  // STOP is usually called while the ball still rolls (after a goal, a foul, out): 2.2 m/s towards our
+  // goal, passing about 0.3 m from one of ours, still rolling when the 2 s grace ends.
+  m.place_ball({-0.5, 0.0});
+  m.roll_ball({-2.0, 0.9});
+  run_stop(m, "StopRolling", std::nullopt);
+}
+
+TEST_P(PlannerSimReferee, StopBallInsideOurDefenseArea) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  // The ball deep in OUR defense area next to our keeper: our keeper must give it 0.5 m too, their robots
+  // must stay 0.2 m outside our defense area.
+  const double hl = m.half_length();
+  const Vec2 ball(-hl + 0.4, 0.3);
+  m.place_ball(ball);
+  m.place(true, 0, {-hl + 0.2, 0.1}, 0.0);
+  m.place(false, 1, ball + Vec2(1.0, 0.2), M_PI);
+  m.place(false, 5, {-hl + m.field().penalty_area_depth + 0.1, -0.3}, M_PI);
+  run_stop(m, "StopOurArea", std::nullopt);
+}
+
+// ---- their free kick --------------------------------------------------------------------------------------
+
+/// STOP (their free kick announced) with ours crowding the ball at `ball`, then DIRECT_FREE theirs.
+void run_their_free_kick(LockstepMatch& m, const char* scenario, const Vec2& ball) {
+  const sim::FieldGeometry& field = m.field();
+  m.place_ball(ball);
+  m.place(true, 1, ball + Vec2(-0.15, -0.1), 0.0);
+  m.place(true, 2, ball + Vec2(0.1, -0.25), 0.0);
+  m.place(false, 5, ball + Vec2(0.4, 0.1), M_PI);
+  const double stop_at = kWarmUp;
+  const double free_at = stop_at + 2.5;
+  const RefereeCommand free_kick = testing::command_for(Restart::kFreeKick, m.them());
+  m.script({{stop_at, RefereeCommand::kStop, free_kick}, {free_at, free_kick}});
+  StopRules stop;
+  Always keep{"their free kick: ours >= 0.5 m + radius from the ball until it is in play"};
+  Always defense{"free kick: every robot >= 0.2 m from the opponent defense area until the ball is in play"};
+  Eventually kicked{"their free kick: their kicker puts the ball in play", 6.0};
+  double min_ours = 1e9;
+  std::optional<TrueRobot> kicker;
+  while (m.time() < free_at + 6.0 && !kicked.done()) {
+    m.tick();
+    const Truth& truth = m.truth();
+    const double t = m.time();
+    if (t < stop_at + kGrace) continue;
+    if (t < free_at) {
+      stop.check(m.field(), truth, t);
+      continue;
+    }
+    const bool in_play = (truth.ball - ball).norm() > kInPlayMove;
+    if (kicked.update(in_play, t - free_at)) break;
+    kicker = nearest(truth, false);
+    for (const TrueRobot& r : truth.robots) {
+      const double dd = distance_to_opponent_defense_area(field, r);
+      defense.require(dd >= kDefenseKeepOut, t, [&] { return r.name() + " " + Always::fmt(dd) + " m"; });
+      if (!r.ours) continue;
+      const double d = (r.position - truth.ball).norm();
+      min_ours = std::min(min_ours, d);
+      keep.require(d >= kBallKeepOut, t,
+                   [&] { return r.name() + " " + Always::fmt(d) + " m from the ball"; });
+    }
+  }
+  std::string after;
+  if (kicked.done() && kicker) after = check_no_double_touch(m, *kicker, 2.0);
+  stop.report();
+  keep.report();
+  defense.report();
+  kicked.report();
+  print_figures(scenario, m.test_case(),
+                "min ours-ball dist " + Always::fmt(min_ours) + " m (STOP min " + Always::fmt(stop.min_ball) +
+                    "), their kick after " + Always::fmt(kicked.at()) + " s, " + after);
+}
+
+TEST_P(PlannerSimReferee, TheirFreeKickInOurHalf) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  run_their_free_kick(m, "TheirFreeKick", {-1.5, 1.0});
+}
+
+TEST_P(PlannerSimReferee, TheirFreeKickOneMetreFromOurDefenseArea) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  // Rules: a free kick is at least 1 m from either defense area.
+  const sim::FieldGeometry& field = m.field();
+  run_their_free_kick(
+      m, "TheirFKNearArea",
+      {-m.half_length() + field.penalty_area_depth + 1.0, field.penalty_area_width / 2 - 0.4});
+}
+
+TEST_P(PlannerSimReferee, TheirThrowInAtOurTouchLine) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  // Rules: a throw-in is 0.2 m inside the touch line.
+  run_their_free_kick(m, "TheirThrowIn", {-1.0, m.field().field_width / 2 - 0.2});
+}
+
+// ---- kickoff (ours; theirs for the opponent) --------------------------------------------------------------
+
+TEST_P(PlannerSimReferee, KickoffFormationsHoldThenOurKickerKicks) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  const sim::FieldGeometry& field = m.field();
+  m.place_ball({0, 0});
+  // One of ours in their half inside the centre circle, one of theirs in ours: both must get out.
+  m.place(true, 5, {0.3, 0.15}, M_PI);
+  m.place(false, 5, {-0.35, -0.3}, 0.0);
+  const double stop_at = kWarmUp;
+  const double prepare_at = stop_at + 2.0;
+  const double start_at = prepare_at + 2.5;
+  const RefereeCommand kickoff = ours(Restart::kKickoff);
+  m.script({{stop_at, RefereeCommand::kStop, kickoff},
+            {prepare_at, kickoff},
+            {start_at, RefereeCommand::kNormalStart}});
+  const double circle = field.center_circle_radius;
+  Always untouched{"kickoff: no robot touches the ball before NORMAL_START"};
+  Always our_half{"our kickoff: ours but the kicker in our half, outside the centre circle"};
+  Always their_half{
+      "their kickoff: theirs in their half, outside the centre circle, until the ball is in play"};
+  Eventually kicked{"our kickoff: the ball moves > 0.05 m after NORMAL_START", 3.0};
+  double min_gap = 1e9;
+  double min_theirs = 1e9;
+  std::optional<TrueRobot> kicker_before;
+  while (m.time() < start_at + 3.0 && !kicked.done()) {
+    m.tick();
+    const Truth& truth = m.truth();
+    const double t = m.time();
+    const bool in_play = truth.ball.norm() > kInPlayMove;
+    if (t < start_at) {
+      for (const TrueRobot& r : truth.robots) {
+        const double gap = (r.position - truth.ball).norm() - kR - kBallRadius;
+        min_gap = std::min(min_gap, gap);
+        untouched.require(gap > 0 && !in_play, t,
+                          [&] { return r.name() + " gap " + Always::fmt(gap) + " m"; });
+      }
+    } else if (kicked.update(in_play, t - start_at)) {
+      break;
+    }
+    kicker_before = nearest(truth, true);
+    // Formations: settled 2 s after PREPARE_KICKOFF (they were prepared during STOP already).
+    if (t < prepare_at + kGrace) continue;
+    // The kicker is our robot nearest the ball; all the others must be legal.
+    std::optional<std::uint32_t> kicker;
+    double best = 1e9;
+    for (const TrueRobot& r : truth.robots) {
+      if (r.ours && (r.position - truth.ball).norm() < best) {
+        best = (r.position - truth.ball).norm();
+        kicker = r.id;
+      }
+    }
+    for (const TrueRobot& r : truth.robots) {
+      // In own half: the whole body (centre x <= -radius in the owner's frame); outside the circle: the body.
+      const Vec2 own = r.ours ? r.position : Vec2(-r.position);
+      const bool legal = own.x() <= -kR && own.norm() >= circle + kR;
+      if (r.ours) {
+        if (r.id == *kicker) continue;
+        our_half.require(
+            legal, t, [&] { return r.name() + " at " + Always::fmt(own.x()) + ", " + Always::fmt(own.y()); });
+      } else {
+        min_theirs = std::min(min_theirs, own.norm());
+        their_half.require(
+            legal, t, [&] { return r.name() + " at " + Always::fmt(own.x()) + ", " + Always::fmt(own.y()); });
+      }
+    }
+  }
+  std::string after;
+  if (kicked.done() && kicker_before) after = check_no_double_touch(m, *kicker_before, 2.0);
+  untouched.report();
+  our_half.report();
+  their_half.report();
+  kicked.report();
+  print_figures("Kickoff", param(),
+                "min robot-ball gap before start " + Always::fmt(min_gap) + " m, theirs min dist to centre " +
+                    Always::fmt(min_theirs) + " m, kicked after " + Always::fmt(kicked.at()) + " s, " +
+                    after);
+}
+
+// ---- ball placement (ours; theirs for the opponent) -------------------------------------------------------
+
+/// BALL_PLACEMENT ours from the current layout (ball already placed) to `target`, next: our free kick.
+void run_our_placement(LockstepMatch& m, const char* scenario, const Vec2& target, double deadline) {
+  const double place_at = kWarmUp;
+  m.script({{place_at, testing::command_for(Restart::kPlacement, m.us()),
+             testing::command_for(Restart::kFreeKick, m.us()), target}});
+  constexpr double kPlacementTolerance = 0.15;  // rules: ball within 0.15 m of the designated position
+  constexpr double kMinRobotGap = 0.05;         // rules: no robot within 0.05 m (next: our free kick)
+  constexpr double kRest = 0.05;                // m/s: the ball is stationary
+  Eventually placed{"our placement: ball at rest within 0.15 m, nobody within 0.05 m", deadline, 0.5};
+  Always our_others{"our placement: our other robots >= 0.5 m + radius from the ball"};
+  Always their_ball{"their placement: theirs >= 0.5 m + radius from the ball"};
+  Always their_corridor{"their placement: theirs >= 0.5 m + radius from the ball -> target segment"};
+  Always speed{"placement: every robot <= 1.5 m/s"};
+  std::optional<std::uint32_t> placer;
+  double min_theirs = 1e9;
+  double min_others = 1e9;
+  double error = 1e9;
+  double gap_at_success = 0;
+  while (m.time() < place_at + deadline + 0.6 && !placed.done()) {
+    m.tick();
+    const Truth& truth = m.truth();
+    const double t = m.time();
+    if (t < place_at) continue;
+    for (const RoleInfo& role : m.output(true).roles) {
+      if (role.role == "placer") placer = role.robot_id;
+    }
+    error = (truth.ball - target).norm();
+    double gap = 1e9;
+    for (const TrueRobot& r : truth.robots)
+      gap = std::min(gap, (r.position - truth.ball).norm() - kR - kBallRadius);
+    if (placed.update(
+            error <= kPlacementTolerance && truth.ball_velocity.norm() < kRest && gap >= kMinRobotGap,
+            t - place_at)) {
+      gap_at_success = gap;
+    }
+    if (t - place_at < kGrace) continue;
+    for (const TrueRobot& r : truth.robots) {
+      speed.require(r.speed() <= kStopSpeed, t,
+                    [&] { return r.name() + " at " + Always::fmt(r.speed()) + " m/s"; });
+      const double d = (r.position - truth.ball).norm();
+      if (r.ours) {
+        if (placer && r.id == *placer) continue;
+        min_others = std::min(min_others, d);
+        our_others.require(d >= kBallKeepOut, t, [&] { return r.name() + " " + Always::fmt(d) + " m"; });
+      } else {
+        const double c = testing::distance_to_segment(r.position, truth.ball, target);
+        min_theirs = std::min(min_theirs, c);
+        their_ball.require(d >= kBallKeepOut, t, [&] { return r.name() + " " + Always::fmt(d) + " m"; });
+        their_corridor.require(c >= kBallKeepOut, t, [&] { return r.name() + " " + Always::fmt(c) + " m"; });
+      }
+    }
+  }
+  placed.report("(ball error " + Always::fmt(error) + " m)");
+  our_others.report();
+  their_ball.report();
+  their_corridor.report();
+  speed.report();
+  print_figures(scenario, m.test_case(),
+                "placed after " + Always::fmt(placed.at()) + " s, error " + Always::fmt(error) + " m, gap " +
+                    Always::fmt(gap_at_success) + " m, our others min " + Always::fmt(min_others) +
+                    " m, theirs min to corridor " + Always::fmt(min_theirs) + " m");
+}
+
+TEST_P(PlannerSimReferee, OurBallPlacementAcrossTheCentre) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  const Vec2 start(1.2, 1.3);
+  m.place_ball(start);
+  m.place(false, 5, {0.3, 0.45}, M_PI);  // one of theirs right on the ball -> target path
+  m.place(false, 3, start + Vec2(0.3, 0.2), M_PI);
+  run_our_placement(m, "BallPlacement", {-0.6, -0.4}, 15.0);
+}
+
+TEST_P(PlannerSimReferee, OurBallPlacementDiagonallyOverTheField) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  // From near their corner to near ours: 6.7 m (division B) / 11.3 m (A). The placer carries at most
+  // 1 m/s, so this one gets the rules' full placement time (30 s, GC default) rather than 15 s.
+  const double hl = m.half_length();
+  const double hw = m.field().field_width / 2;
+  m.place_ball({hl - 1.5, hw - 0.5});
+  run_our_placement(m, "PlacementLong", {-hl + 2.5, -hw + 0.5}, 30.0);
+}
+
+TEST_P(PlannerSimReferee, OurBallPlacementOutOfTheCornerInsideTheField) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  // The ball in their corner, 0.15 m from both lines, to a point 0.85 m along the touch line: the placer
+  // has to get between the ball and the corner (it may leave the field by 0.05 m).
+  const double hl = m.half_length();
+  const double hw = m.field().field_width / 2;
+  m.place_ball({hl - 0.15, -hw + 0.15});
+  run_our_placement(m, "PlacementCorner", {hl - 1.0, -hw + 0.2}, 15.0);
+}
+
+// ---- penalty (ours; theirs for the opponent) --------------------------------------------------------------
+
+TEST_P(PlannerSimReferee, PenaltyPositionsHoldThenOurKickerShoots) {
+  LockstepMatch m(param(), seed());
+  default_layout(m);
+  const double hl = m.half_length();
+  const sim::FieldGeometry& field = m.field();
+  // Rules: the penalty mark is goal_center_to_penalty_mark from the DEFENDING goal (6 m in division B).
+  const Vec2 mark(hl - field.goal_center_to_penalty_mark, 0);
+  m.place_ball(mark);
+  const double stop_at = kWarmUp;
+  const double prepare_at = stop_at + 2.5;
+  const double start_at = prepare_at + 2.5;
+  const RefereeCommand penalty = ours(Restart::kPenalty);
+  m.script({{stop_at, RefereeCommand::kStop, penalty},
+            {prepare_at, penalty},
+            {start_at, RefereeCommand::kNormalStart}});
+  Always kicker_near{"our penalty: our kicker within 0.4 m of the mark, not touching the ball"};
+  Always behind{"penalty: every other robot >= 1 m behind the ball"};
+  Always keeper{"their penalty: their keeper touches its goal line between the posts"};
+  Eventually shot{"our penalty: the ball moves > 0.05 m towards their goal after NORMAL_START", 3.0};
+  double max_behind = -1e9;
+  double keeper_offset = 0;
+  double kicker_distance = 0;
+  while (m.time() < start_at + 3.0 && !shot.done()) {
+    m.tick();
+    const Truth& truth = m.truth();
+    const double t = m.time();
+    const bool in_play = (truth.ball - mark).norm() > kInPlayMove;
+    if (t >= start_at) {
+      if (shot.update(in_play && truth.ball.x() > mark.x(), t - start_at)) break;
+    }
+    if (t < prepare_at + kGrace || in_play) continue;
+    std::optional<std::uint32_t> kicker;
+    double best = 1e9;
+    for (const TrueRobot& r : truth.robots) {
+      if (r.ours && (r.position - truth.ball).norm() < best) {
+        best = (r.position - truth.ball).norm();
+        kicker = r.id;
+      }
+    }
+    kicker_distance = best;
+    kicker_near.require(best <= 0.4 && (t >= start_at || best >= kR + kBallRadius), t,
+                        [&] { return "nearest of ours " + Always::fmt(best) + " m from the ball"; });
+    for (const TrueRobot& r : truth.robots) {
+      if (r.ours && r.id == *kicker) continue;
+      if (!r.ours && r.id == 0) {
+        // Touching the goal line (thickness 0.01 m) with its body, between the posts.
+        const double off = std::abs(r.position.x() - hl);
+        keeper_offset = std::max(keeper_offset, off);
+        keeper.require(
+            off <= kR + field.line_thickness / 2 && std::abs(r.position.y()) <= field.goal_width / 2, t,
+            [&] { return "at " + Always::fmt(r.position.x()) + ", " + Always::fmt(r.position.y()); });
+        continue;
+      }
+      // >= 1 m behind the ball: the robot's body (our frame: towards -x, our kicker attacks +x).
+      const double margin = truth.ball.x() - r.position.x() - kR;
+      max_behind = std::max(max_behind, -margin);
+      behind.require(margin >= 1.0, t,
+                     [&] { return r.name() + " only " + Always::fmt(margin) + " m behind"; });
+    }
+  }
+  kicker_near.report();
+  behind.report();
+  keeper.report();
+  shot.report();
+  print_figures("Penalty", param(),
+                "kicker " + Always::fmt(kicker_distance) + " m from the mark, closest other " +
+                    Always::fmt(-max_behind) + " m behind, keeper off the line " +
+                    Always::fmt(keeper_offset) + " m, shot after " + Always::fmt(shot.at()) + " s");
+}
+
+INSTANTIATE_TEST_SUITE_P(PlannerSim, PlannerSimReferee, ::testing::ValuesIn(all_cases()),
+                         [](const ::testing::TestParamInfo<Case>& p) { return p.param.name(); });
+
+// DESIGN LIMITATION (disabled, kept as the reproduction): a ball that left the field over the touch line
+// (0.1 m outside, 0.2 m from the wall) to the throw-in point 0.2 m inside. The placer takes the ball only by
+// approaching from behind it on the ball -> target line (0.23 m behind) and pushing it with the dribbler
+// on, but every target is clamped to the field + 0.05 m (motion.cpp clamp_to_field, Zones::field_margin)
+// before it is pushed out of the ball's 0.17 m keep-off circle: the approach point lands on the TARGET side
+// of the ball and the placer parks there for the whole 15 s (observed: placer at 0.18 m from the ball,
+// skill approach_ball, ball error 0.30 m throughout). Needs the placer to be allowed into the boundary (up
+// to the wall minus its radius) and, for balls closer than ~0.3 m to the wall, a pull-back skill: a design
+// change in the skill layer, not a small fix.
+// One case only (the limitation does not depend on colour, side or division): run it with
+// --gtest_also_run_disabled_tests.
+TEST(PlannerSimKnownLimitation, DISABLED_OurBallPlacementFromOutsideTheTouchLine) {
+  LockstepMatch m({.side = {TeamColor::kBlue, false}, .division_a = false}, seed());
+  default_layout(m);
+  const double hw = m.field().field_width / 2;
+  m.place_ball({1.0, hw + 0.1});
+  run_our_placement(m, "PlacementOut", {1.0, hw - 0.2}, 15.0);
+}
+
+// ---- determinism ------------------------------------------------------------------------------------------
+
+sim::WorldSnapshot run_placement(std::uint64_t seed, double seconds) {
+  LockstepMatch m({.side = {TeamColor::kBlue, true}, .division_a = false}, seed);
+  default_layout(m);
+  m.place_ball({1.2, 1.3});
+  // Placement, STOP, normal play: dribbling, carrying, kicking and contacts all in one run.
+  m.script({{kWarmUp, testing::command_for(Restart::kPlacement, TeamColor::kBlue),
+             testing::command_for(Restart::kFreeKick, TeamColor::kBlue), Vec2(-0.6, -0.4)},
+            {kWarmUp + seconds * 0.6, RefereeCommand::kStop},
+            {kWarmUp + seconds * 0.7, RefereeCommand::kForceStart}});
+  while (m.time() < kWarmUp + seconds) m.tick();
+  return m.sim().snapshot();
+}
+
+TEST(PlannerSimDeterminism, SameSeedSameMatchBitExact) {
+  const sim::WorldSnapshot a = run_placement(seed(), 8.0);
+  const sim::WorldSnapshot b = run_placement(seed(), 8.0);
+  ASSERT_EQ(a.time, b.time);
+  ASSERT_EQ(a.robots.size(), b.robots.size());
+  EXPECT_EQ(a.ball.position, b.ball.position);
+  EXPECT_EQ(a.ball.velocity, b.ball.velocity);
+  for (std::size_t i = 0; i < a.robots.size(); ++i) {
+    EXPECT_EQ(a.robots[i].key, b.robots[i].key);
+    // Bit-exact: == on doubles, no tolerance.
+    EXPECT_EQ(a.robots[i].position.x(), b.robots[i].position.x()) << i;
+    EXPECT_EQ(a.robots[i].position.y(), b.robots[i].position.y()) << i;
+    EXPECT_EQ(a.robots[i].orientation, b.robots[i].orientation) << i;
+    EXPECT_EQ(a.robots[i].velocity.x(), b.robots[i].velocity.x()) << i;
+    EXPECT_EQ(a.robots[i].velocity.y(), b.robots[i].velocity.y()) << i;
+    EXPECT_EQ(a.robots[i].angular_velocity, b.robots[i].angular_velocity) << i;
+  }
+  // The run did something (the ball was carried away from its start, vision (-1.2, -1.3))...
+  EXPECT_GT((a.ball.position.head<2>() - Vec2(-1.2, -1.3)).norm(), 0.5);
+  // ... and the seed matters (vision noise -> world model -> planner -> a different match).
+  const sim::WorldSnapshot c = run_placement(seed() + 1, 8.0);
+  bool differs = c.ball.position != a.ball.position;
+  for (std::size_t i = 0; i < a.robots.size() && i < c.robots.size(); ++i) {
+    differs |= c.robots[i].position != a.robots[i].position;
+  }
+  EXPECT_TRUE(differs);
+}
+
+}  // namespace
+}  // namespace ssl::planner
