@@ -14,7 +14,11 @@ Fields<RobotFilterParams> robot_fields() {
       field("position_stddev", &RobotFilterParams::position_stddev).unit("m").range(1e-4, 0.1),
       field("orientation_stddev", &RobotFilterParams::orientation_stddev).unit("rad").range(1e-4, 1),
       field("acceleration_stddev", &RobotFilterParams::acceleration_stddev).unit("m/s^2").range(0.01, 100)
-          .doc("process noise without a command (enemy robots)"),
+          .doc("prior spread of the acceleration when the uncommanded model takes over"),
+      field("jerk_stddev", &RobotFilterParams::jerk_stddev).unit("m/s^3/sqrt(Hz)").range(0.01, 1000)
+          .doc("white jerk density of the uncommanded (Singer) model: enemy robots"),
+      field("acceleration_time_constant", &RobotFilterParams::acceleration_time_constant).unit("s")
+          .range(0, 100).doc("without a command the acceleration decays with it (0: held)"),
       field("commanded_acceleration_stddev", &RobotFilterParams::commanded_acceleration_stddev)
           .unit("m/s^2").range(0.01, 100).doc("process noise while following our command"),
       field("angular_acceleration_stddev", &RobotFilterParams::angular_acceleration_stddev)

@@ -25,11 +25,12 @@ RobotFilter::RobotFilter(const RobotFilterParams& params, const RobotDetection& 
 void RobotFilter::reset(const RobotDetection& detection, time::Timestamp t_capture) {
   State x0;
   x0 << detection.position.x(), detection.position.y(), detection.has_orientation ? detection.orientation : 0,
-      0, 0, 0;
+      0, 0, 0, 0, 0;
   Filter::StateMatrix p0 = Filter::StateMatrix::Zero();
   const double sp = params_.position_stddev;
   const double so = detection.has_orientation ? params_.orientation_stddev : 3.0;
-  p0.diagonal() << sp * sp, sp * sp, so * so, 4.0, 4.0, 25.0;
+  const double sa = params_.acceleration_stddev;
+  p0.diagonal() << sp * sp, sp * sp, so * so, 4.0, 4.0, 25.0, sa * sa, sa * sa;
   filter_.reset(x0, p0);
   time_ = t_capture;
   last_update_ = t_capture;
@@ -71,14 +72,84 @@ time::Timestamp RobotFilter::next_command_change(time::Timestamp from, time::Tim
   return next;
 }
 
-void RobotFilter::set_prediction(Filter& filter, double dt, const RobotCommand* command) const {
-  const State& x = filter.state();
-  filter.F.setIdentity();
-  filter.F(0, 3) = dt;
-  filter.F(1, 4) = dt;
-  filter.F(2, 5) = dt;
-  filter.u.setZero();
+RobotFilter::State RobotFilter::free_step(const State& x, double dt, bool turning,
+                                          Filter::StateMatrix* jacobian) const {
+  const double decay =
+      params_.acceleration_time_constant > 0 ? std::exp(-dt / params_.acceleration_time_constant) : 1.0;
+  State f = x;
+  f(2) += x(5) * dt;
+  const Vec2 v = x.segment<2>(3);
+  const Vec2 a = x.segment<2>(6);
+  if (!turning) {
+    // The acceleration stays in the field (a controller that re-aims the robot's velocity).
+    f.head<2>() += dt * v + dt * dt / 2 * a;
+    f.segment<2>(3) += dt * a;
+    f.segment<2>(6) = decay * a;
+    if (jacobian) {
+      jacobian->setIdentity();
+      (*jacobian)(0, 3) = (*jacobian)(1, 4) = (*jacobian)(2, 5) = dt;
+      (*jacobian)(0, 6) = (*jacobian)(1, 7) = dt * dt / 2;
+      (*jacobian)(3, 6) = (*jacobian)(4, 7) = dt;
+      (*jacobian)(6, 6) = (*jacobian)(7, 7) = decay;
+    }
+    return f;
+  }
+  // The robot holds (or smoothly changes) a LOCAL velocity: what is left of the acceleration once the
+  // centripetal part w J v is taken off, a_r = a - w J v, turns with the robot: with R = R(w dt),
+  // v' = R (v + a_r dt), a_r' = R a_r, a' = a_r' + w J v', p' = p + dt (v + v') / 2.
+  const double w = x(5);
+  const double c = std::cos(w * dt);
+  const double s = std::sin(w * dt);
+  Eigen::Matrix2d rot;
+  rot << c, -s, s, c;
+  Eigen::Matrix2d perp;  // J: a quarter turn
+  perp << 0, -1, 1, 0;
+  const Vec2 a_r = a - w * (perp * v);
+  const Vec2 v_next = rot * (v + dt * a_r);
+  const Vec2 a_r_next = decay * (rot * a_r);
+  const Vec2 a_next = a_r_next + w * (perp * v_next);
+  f.head<2>() += dt / 2 * (v + v_next);
+  f.segment<2>(3) = v_next;
+  f.segment<2>(6) = a_next;
+  if (jacobian) {
+    using Rows = Eigen::Matrix<double, 2, 8>;
+    Rows d_v = Rows::Zero();  // dv/dx
+    d_v(0, 3) = d_v(1, 4) = 1;
+    Rows d_ar = Rows::Zero();
+    d_ar.block<2, 2>(0, 3) = -w * perp;
+    d_ar.col(5) = -(perp * v);
+    d_ar.block<2, 2>(0, 6).setIdentity();
+    const Rows d_vn = [&] {
+      Rows d = rot * (d_v + dt * d_ar);
+      d.col(5) += dt * (perp * v_next);  // dR/dw = dt J R
+      return d;
+    }();
+    Rows d_arn = decay * (rot * d_ar);
+    d_arn.col(5) += dt * (perp * a_r_next);
+    Rows d_an = d_arn + w * (perp * d_vn);
+    d_an.col(5) += perp * v_next;
+    jacobian->setIdentity();
+    jacobian->block<2, 8>(0, 0) += dt / 2 * (d_v + d_vn);
+    (*jacobian)(2, 5) = dt;
+    jacobian->block<2, 8>(3, 0) = d_vn;
+    jacobian->block<2, 8>(6, 0) = d_an;
+  }
+  return f;
+}
+
+RobotFilter::State RobotFilter::step(const State& x, double dt, const RobotCommand* command,
+                                     Filter::StateMatrix* jacobian, Filter::StateMatrix* noise) const {
+  // In contact without a command: constant velocity, the acceleration forgotten (reset to its prior).
+  State f = x;
+  f.head<3>() += dt * x.segment<3>(3);
+  f.segment<2>(6).setZero();
+  if (jacobian) {
+    jacobian->setIdentity();
+    (*jacobian)(0, 3) = (*jacobian)(1, 4) = (*jacobian)(2, 5) = dt;
+    (*jacobian)(6, 6) = (*jacobian)(7, 7) = 0;
+  }
   const bool commanded = command != nullptr && dt > 0;
+  const bool free = !commanded && !in_contact_ && dt > 0;  // the uncommanded (Singer) acceleration model
   double sa = in_contact_ ? params_.contact_acceleration_stddev : params_.acceleration_stddev;
   double sw = in_contact_ ? params_.contact_angular_acceleration_stddev : params_.angular_acceleration_stddev;
   if (commanded) {
@@ -86,7 +157,7 @@ void RobotFilter::set_prediction(Filter& filter, double dt, const RobotCommand* 
     sw = params_.commanded_angular_acceleration_stddev;
     // Extended Kalman step of the commanded model: the robot's controller ramps its velocity towards the
     // command turned by its (mid-step) heading, at most max_acceleration; the position integrates the
-    // velocity along the ramp. F is the Jacobian, u = f(x) - F x. A velocity that reaches the command
+    // velocity along the ramp. `jacobian` is its Jacobian (EKF). A velocity that reaches the command
     // forgets its old value (dv'/dv = 0): that is what lets the filter trust the command.
     const double heading = x(2) + x(5) * dt / 2;
     const double c = std::cos(heading);
@@ -114,68 +185,73 @@ void RobotFilter::set_prediction(Filter& filter, double dt, const RobotCommand* 
     const double dw_dw = std::abs(command->angular - w) > max_dw ? 1 : 0;
     // Mean velocity over the step: the ramp part, then the reached velocity.
     const double ramp_weight = reach_fraction / 2;
-    State f;
     f.head<2>() = x.head<2>() + dt * (ramp_weight * v + (1 - ramp_weight) * v_next);
     f(2) = x(2) + dt * (w + w_next) / 2;
     f.segment<2>(3) = v_next;
     f(5) = w_next;
-    filter.F.setZero();
-    filter.F.block<2, 2>(0, 0).setIdentity();
-    filter.F.block<2, 2>(0, 3) = dt * (ramp_weight * Eigen::Matrix2d::Identity() + (1 - ramp_weight) * dv_dv);
-    filter.F.block<2, 1>(0, 2) = dt * (1 - ramp_weight) * dv_dheading;
-    filter.F(2, 2) = 1;
-    filter.F(2, 5) = dt * (1 + dw_dw) / 2;
-    filter.F.block<2, 2>(3, 3) = dv_dv;
-    filter.F.block<2, 1>(3, 2) = dv_dheading;
-    filter.F(5, 5) = dw_dw;
-    filter.u = f - filter.F * x;
-  } else if (turn_model_ && dt > 0 && !in_contact_) {
-    // Extended Kalman step of the local-velocity model: the velocity turns with the robot (an omni robot
-    // holding a local velocity command), v' = R(w dt) v, p' = p + dt (v + v') / 2; F is the Jacobian and
-    // u = f(x) - F x, so that F x + u = f(x).
-    const double turn = x(5) * dt;
-    const double c = std::cos(turn);
-    const double s = std::sin(turn);
-    const Vec2 v(x(3), x(4));
-    const Vec2 v_next(c * v.x() - s * v.y(), s * v.x() + c * v.y());
-    State f = x;
-    f.head<2>() += dt * (v + v_next) / 2;
-    f(2) += turn;
-    f.segment<2>(3) = v_next;
-    filter.F(3, 3) = c;
-    filter.F(3, 4) = -s;
-    filter.F(4, 3) = s;
-    filter.F(4, 4) = c;
-    filter.F(3, 5) = -dt * v_next.y();
-    filter.F(4, 5) = dt * v_next.x();
-    filter.F(0, 3) = dt / 2 * (1 + c);
-    filter.F(0, 4) = -dt / 2 * s;
-    filter.F(1, 3) = dt / 2 * s;
-    filter.F(1, 4) = dt / 2 * (1 + c);
-    filter.F(0, 5) = dt / 2 * filter.F(3, 5);
-    filter.F(1, 5) = dt / 2 * filter.F(4, 5);
-    filter.u = f - filter.F * x;
+    if (jacobian) {
+      Filter::StateMatrix& F = *jacobian;
+      F.setZero();
+      F.block<2, 2>(0, 0).setIdentity();
+      F.block<2, 2>(0, 3) = dt * (ramp_weight * Eigen::Matrix2d::Identity() + (1 - ramp_weight) * dv_dv);
+      F.block<2, 1>(0, 2) = dt * (1 - ramp_weight) * dv_dheading;
+      F(2, 2) = 1;
+      F(2, 5) = dt * (1 + dw_dw) / 2;
+      F.block<2, 2>(3, 3) = dv_dv;
+      F.block<2, 1>(3, 2) = dv_dheading;
+      F(5, 5) = dw_dw;
+    }
+  } else if (free) {
+    // Constant (Singer: mean-reverting) FIELD acceleration, held in the field or turning with the robot.
+    f = free_step(x, dt, turn_model_, jacobian);
+  }
+  if (!noise) return f;
+  Filter::StateMatrix& Q = *noise;
+  const double adt = std::abs(dt);
+  Q.setZero();
+  if (free) {
+    // Continuous white jerk (integrated three times), per axis over [p, v, a].
+    const double q = params_.jerk_stddev * params_.jerk_stddev * noise_scale_;
+    const double d2 = adt * adt, d3 = d2 * adt, d4 = d3 * adt, d5 = d4 * adt;
+    for (int i = 0; i < 2; ++i) {
+      Q(i, i) = q * d5 / 20;
+      Q(i, i + 3) = Q(i + 3, i) = q * d4 / 8;
+      Q(i, i + 6) = Q(i + 6, i) = q * d3 / 6;
+      Q(i + 3, i + 3) = q * d3 / 3;
+      Q(i + 3, i + 6) = Q(i + 6, i + 3) = q * d2 / 2;
+      Q(i + 6, i + 6) = q * adt;
+    }
+    sa = 0;  // the jerk noise moves the velocity
+  } else {
+    // The acceleration state is not part of these models: it restarts unknown (zero, its prior variance).
+    Q(6, 6) = Q(7, 7) = params_.acceleration_stddev * params_.acceleration_stddev;
   }
   // Discrete white-noise acceleration.
-  const double adt = std::abs(dt);
   const double q11 = adt * adt * adt * adt / 4;
   const double q12 = adt * adt * adt / 2;
   const double q22 = adt * adt;
-  filter.Q.setZero();
   for (int i = 0; i < 3; ++i) {
     const double var = (i < 2 ? sa * sa : sw * sw) * noise_scale_;
-    filter.Q(i, i) = q11 * var;
-    filter.Q(i, i + 3) = filter.Q(i + 3, i) = q12 * var;
-    filter.Q(i + 3, i + 3) = q22 * var;
+    Q(i, i) += q11 * var;
+    Q(i, i + 3) += q12 * var;
+    Q(i + 3, i) += q12 * var;
+    Q(i + 3, i + 3) += q22 * var;
   }
+  return f;
 }
 
 void RobotFilter::predict_to(Filter& filter, time::Timestamp from, time::Timestamp to) const {
+  // x = f(x), P = F P F^T + Q. Products of 8x8 matrices are written as lazy (coefficient-wise, unrolled)
+  // products: Eigen would send them to its cache-blocked GEMM, several times slower at this size.
+  Filter::StateMatrix jacobian;
+  Filter::StateMatrix noise;
   while (from < to) {
     const time::Timestamp until = next_command_change(from, to);
-    set_prediction(filter, time::to_seconds(until - from), command_at(from));
-    filter.predict(true);
-    filter.mutable_state()(2) = wrap(filter.state()(2));
+    State x = step(filter.state(), time::to_seconds(until - from), command_at(from), &jacobian, &noise);
+    x(2) = wrap(x(2));
+    filter.mutable_state() = x;
+    const Filter::StateMatrix fp = jacobian.lazyProduct(filter.covariance());
+    filter.mutable_covariance() = fp.lazyProduct(jacobian.transpose()) + noise;
     from = until;
   }
 }
@@ -183,18 +259,20 @@ void RobotFilter::predict_to(Filter& filter, time::Timestamp from, time::Timesta
 RobotFilter::State RobotFilter::predict_state(time::Timestamp t) const {
   if (t > time_) {
     // The mean only (no covariance): state() asks this for every robot on every publish.
-    Filter copy = filter_;
+    State x = filter_.state();
     for (time::Timestamp from = time_; from < t;) {
       const time::Timestamp until = next_command_change(from, t);
-      set_prediction(copy, time::to_seconds(until - from), command_at(from));
-      copy.mutable_state() = copy.F * copy.state() + copy.u;
-      copy.mutable_state()(2) = wrap(copy.state()(2));
+      x = step(x, time::to_seconds(until - from), command_at(from), nullptr, nullptr);
+      x(2) = wrap(x(2));
       from = until;
     }
-    return copy.state();
+    return x;
   }
   State x = filter_.state();
-  x.head<3>() += time::to_seconds(t - time_) * x.tail<3>();  // backwards: constant velocity
+  const double back = time::to_seconds(t - time_);  // backwards: constant acceleration
+  x.head<3>() += back * x.segment<3>(3);
+  x.head<2>() += back * back / 2 * x.segment<2>(6);
+  x.segment<2>(3) += back * x.segment<2>(6);
   x(2) = wrap(x(2));
   return x;
 }
@@ -205,12 +283,8 @@ void RobotFilter::score_motion_models(const RobotDetection& detection, double dt
   // one that has recently explained the detections better (exponentially weighted squared errors).
   if (!params_.velocity_turns_with_robot || dt <= 0 || command_at(time_) != nullptr) return;
   const State& x = filter_.state();
-  const Vec2 v(x(3), x(4));
-  const Vec2 p_global = x.head<2>() + dt * v;
-  const double turn = x(5) * dt;
-  const Vec2 v_turned(std::cos(turn) * v.x() - std::sin(turn) * v.y(),
-                      std::sin(turn) * v.x() + std::cos(turn) * v.y());
-  const Vec2 p_local = x.head<2>() + dt * (v + v_turned) / 2;
+  const Vec2 p_global = free_step(x, dt, false, nullptr).head<2>();
+  const Vec2 p_local = free_step(x, dt, true, nullptr).head<2>();
   const double e_global = (detection.position - p_global).squaredNorm();
   const double e_local = (detection.position - p_local).squaredNorm();
   const double keep = params_.motion_model_memory;
@@ -242,22 +316,34 @@ RobotFilter::UpdateResult RobotFilter::update(const RobotDetection& detection, t
 
   // Adaptive process noise: a detection that the low-noise model cannot explain (collision, wall, a
   // command the robot did not follow) re-runs the prediction with maneuver_noise_scale times the noise.
-  const Filter before = filter_;
+  const State x_before = filter_.state();
+  const Filter::StateMatrix p_before = filter_.covariance();
   if (dt > 0) predict_to(filter_, time_, t_capture);
   const double lag = std::min(0.0, dt);  // <= 0: detection older than the filter state
   set_measurement(detection, lag);
   Filter::Measurement y = measurement_innovation(detection);
-  if (dt > 0 && filter_.mahalanobis2(y) > params_.maneuver_gate) {
-    filter_ = before;
+  // The Kalman update, as KalmanFilter::update_with_innovation (Joseph form) but with lazy products (see
+  // predict_to()) and S computed once for the gate and the gain.
+  Eigen::Matrix<double, 8, 3> pht = filter_.covariance().lazyProduct(filter_.H.transpose());
+  Filter::MeasurementCovariance s_inv = (filter_.H.lazyProduct(pht) + filter_.R).inverse();
+  if (dt > 0 && y.dot(s_inv * y) > params_.maneuver_gate) {
+    filter_.mutable_state() = x_before;
+    filter_.mutable_covariance() = p_before;
     noise_scale_ = params_.maneuver_noise_scale;
     predict_to(filter_, time_, t_capture);
     noise_scale_ = 1;
-    set_measurement(detection, lag);
     y = measurement_innovation(detection);
+    pht = filter_.covariance().lazyProduct(filter_.H.transpose());
+    s_inv = (filter_.H.lazyProduct(pht) + filter_.R).inverse();
   }
   if (dt > 0) time_ = t_capture;
-  filter_.update_with_innovation(y);
+  const Eigen::Matrix<double, 8, 3> gain = pht.lazyProduct(s_inv);
+  filter_.mutable_state() += gain.lazyProduct(y);
   filter_.mutable_state()(2) = wrap(filter_.state()(2));
+  const Filter::StateMatrix i_kh = Filter::StateMatrix::Identity() - gain.lazyProduct(filter_.H);
+  const Filter::StateMatrix kp = i_kh.lazyProduct(filter_.covariance());
+  const Eigen::Matrix<double, 8, 3> kr = gain * filter_.R.diagonal().asDiagonal();
+  filter_.mutable_covariance() = kp.lazyProduct(i_kh.transpose()) + kr.lazyProduct(gain.transpose());
   last_update_ = std::max(last_update_, t_capture);
   return UpdateResult::kFused;
 }
@@ -266,6 +352,7 @@ void RobotFilter::set_measurement(const RobotDetection& detection, double lag) {
   filter_.H.setZero();
   filter_.H(0, 0) = filter_.H(1, 1) = filter_.H(2, 2) = 1;
   filter_.H(0, 3) = filter_.H(1, 4) = filter_.H(2, 5) = lag;
+  filter_.H(0, 6) = filter_.H(1, 7) = lag * lag / 2;
   const double sp = params_.position_stddev;
   const double so = detection.has_orientation ? params_.orientation_stddev : 1e3;
   filter_.R.setZero();

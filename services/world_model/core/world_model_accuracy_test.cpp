@@ -113,8 +113,9 @@ TEST(WorldModelAccuracy, RobotPositionAndVelocityRmsAtLeastHalfOfRawUnderRealist
               "(%.0f%% lower)\n", enemy_raw.value() * 1e3, enemy_filt.value() * 1e3,
               100 * (1 - enemy_filt.value() / enemy_raw.value()));
   EXPECT_GT(raw_pos.n, 1000u);
-  // Our robots (commands known): the design's >= 50 % (measured 59 %, seed 11). Enemy robots follow no
-  // model we know; measured 37 %, guarded at 30 % so that a regression fails.
+  // Our robots (commands known): the design's >= 50 % (measured 58 %, seed 11). Enemy robots (no commands:
+  // Singer acceleration model) measured 37 % (37-38 % over seeds 3, 7, 23), guarded at 30 %: a regression
+  // fails. 50 % is not reached: at 75 Hz and 2 mm noise a model loose enough for this motion cannot do it.
   EXPECT_LE(filt_pos.value(), 0.5 * raw_pos.value());
   EXPECT_LE(enemy_filt.value(), 0.7 * enemy_raw.value());
   EXPECT_LE(filt_vel.value(), 0.5 * naive_vel.value());
@@ -178,7 +179,7 @@ TEST(WorldModelAccuracy, PlannerDrivenRobotsPositionRmsAtLeastHalfOfRawForOurs) 
               100 * (1 - enemy_filt.value() / enemy_raw.value()));
   EXPECT_GT(raw_pos.n, 1000u);
   EXPECT_LE(filt_pos.value(), 0.5 * raw_pos.value());      // measured 56 % lower (seed 12)
-  EXPECT_LE(enemy_filt.value(), 0.8 * enemy_raw.value());  // measured 30 % lower: guard against regressions
+  EXPECT_LE(enemy_filt.value(), 0.7 * enemy_raw.value());  // measured 40 % (38-39 % seeds 4, 8, 24): guard
 }
 
 // The ball slides and rolls across the field, stops, and a robot kicks it.
