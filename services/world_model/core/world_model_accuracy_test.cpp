@@ -50,6 +50,28 @@ sim::RobotCommand local(double forward, double left, double angular, double kick
   return c;
 }
 
+// Ball errors at each frame's capture time: the first raw detection and the filtered state vs the truth,
+// and the filtered velocity vs finite differences of the raw detections.
+struct BallErrors {
+  Rms raw_pos, filt_pos, filt_vel, naive_vel;
+  std::optional<std::pair<time::Timestamp, Vec2>> last_raw;
+
+  void add(const sim::DetectionFrame& frame, const WorldState& world, const sim::WorldSnapshot& truth) {
+    const Vec2 true_ball = truth.ball.position.head<2>();
+    const Vec2 true_velocity = truth.ball.velocity.head<2>();
+    const Vec2 raw(frame.balls[0].x, frame.balls[0].y);
+    raw_pos.add((raw - true_ball).norm());
+    filt_pos.add((world.ball.position.head<2>() - true_ball).norm());
+    filt_vel.add((world.ball.velocity.head<2>() - true_velocity).norm());
+    if (last_raw) {
+      const double dt = time::to_seconds(frame.capture_time - last_raw->first);
+      if (dt > 0.005) naive_vel.add(((raw - last_raw->second) / dt - true_velocity).norm());
+    }
+    last_raw = {frame.capture_time, raw};
+  }
+};
+
+
 // Robots of both teams drive along changing curves; blue (ours) tells the model its commands.
 TEST(WorldModelAccuracy, RobotPositionAndVelocityRmsAtLeastHalfOfRawUnderRealisticNoise) {
   SimHarness h({.robots_per_team = 6, .seed = 11});
@@ -190,8 +212,7 @@ TEST(WorldModelAccuracy, BallPositionRmsAtLeastHalfOfRawWhileRollingAndKicked) {
   setup.robots.push_back({.key = {TeamColor::kBlue, 0}, .x = -4.0, .y = 3.0, .orientation = 0.0});
   setup.robots.push_back({.key = {TeamColor::kYellow, 0}, .x = 4.0, .y = 3.0, .orientation = 0.0});
   ASSERT_TRUE(h.sim().apply(setup).empty());
-  Rms raw_pos, filt_pos, filt_vel, naive_vel;
-  std::optional<std::pair<time::Timestamp, Vec2>> last_raw;
+  BallErrors errors;
   bool kicking = false;
   const time::Timestamp start = h.now();
   auto script = [&](SimHarness& harness) {
@@ -206,20 +227,11 @@ TEST(WorldModelAccuracy, BallPositionRmsAtLeastHalfOfRawWhileRollingAndKicked) {
   };
   h.run(8s, script, [&](const sim::DetectionFrame& frame) {
     if (time::to_seconds(frame.capture_time - start) < 0.3 || frame.balls.empty()) return;
-    const sim::WorldSnapshot& truth = h.truth(frame.capture_time);
     const WorldState world = h.model().state_at_vision_time(frame.capture_time);
     ASSERT_TRUE(world.has_ball);
-    const Vec2 true_ball = truth.ball.position.head<2>();
-    const Vec2 raw(frame.balls[0].x, frame.balls[0].y);
-    raw_pos.add((raw - true_ball).norm());
-    filt_pos.add((world.ball.position.head<2>() - true_ball).norm());
-    filt_vel.add((world.ball.velocity.head<2>() - truth.ball.velocity.head<2>()).norm());
-    if (last_raw) {
-      const double dt = time::to_seconds(frame.capture_time - last_raw->first);
-      if (dt > 0.005) naive_vel.add(((raw - last_raw->second) / dt - truth.ball.velocity.head<2>()).norm());
-    }
-    last_raw = {frame.capture_time, raw};
+    errors.add(frame, world, h.truth(frame.capture_time));
   });
+  const auto& [raw_pos, filt_pos, filt_vel, naive_vel, last_raw] = errors;
   std::printf("[WorldModel] ball (realistic, rolling + kick, %zu samples): position RMS raw %.2f mm, filtered "
               "%.2f mm (%.0f%% lower); velocity RMS filtered %.3f m/s vs raw finite difference %.3f m/s; "
               "kicks detected %llu\n",
@@ -291,24 +303,14 @@ TEST(WorldModelAccuracy, BallPositionRmsAtLeastHalfOfRawWhilePassedBetweenRobots
     last_kick = t;
     ++kicks;
   };
-  Rms raw_pos, filt_pos, filt_vel, naive_vel;
-  std::optional<std::pair<time::Timestamp, Vec2>> last_raw;
+  BallErrors errors;
   h.run(14s, script, [&](const sim::DetectionFrame& frame) {
     if (time::to_seconds(frame.capture_time - start) < 0.3 || frame.balls.empty()) return;
-    const sim::WorldSnapshot& truth = h.truth(frame.capture_time);
     const WorldState world = h.model().state_at_vision_time(frame.capture_time);
     ASSERT_TRUE(world.has_ball);
-    const Vec2 true_ball = truth.ball.position.head<2>();
-    const Vec2 raw(frame.balls[0].x, frame.balls[0].y);
-    raw_pos.add((raw - true_ball).norm());
-    filt_pos.add((world.ball.position.head<2>() - true_ball).norm());
-    filt_vel.add((world.ball.velocity.head<2>() - truth.ball.velocity.head<2>()).norm());
-    if (last_raw) {
-      const double dt = time::to_seconds(frame.capture_time - last_raw->first);
-      if (dt > 0.005) naive_vel.add(((raw - last_raw->second) / dt - truth.ball.velocity.head<2>()).norm());
-    }
-    last_raw = {frame.capture_time, raw};
+    errors.add(frame, world, h.truth(frame.capture_time));
   });
+  const auto& [raw_pos, filt_pos, filt_vel, naive_vel, last_raw] = errors;
   std::printf("[WorldModel] ball passed between robots (realistic, %d kicks, %zu samples): position RMS raw %.2f mm, "
               "filtered %.2f mm (%.0f%% lower); velocity RMS filtered %.3f m/s vs raw finite difference %.3f m/s; "
               "kicks detected %llu\n",
