@@ -372,6 +372,29 @@ void keep_kickoff_legal(const Situation& s, TeamIntents& out, std::optional<std:
   }
 }
 
+/// Our kicker of a prepared restart (kickoff, penalty): the robot closest to the ball (stable). Before
+/// NORMAL_START it waits behind the ball facing their goal, `staging_gap` m beyond dribbling distance, never
+/// touching it; once the restart is ready it approaches and kicks. Returns the kicker (reserved).
+std::optional<std::uint32_t> take_prepared_kick(const Situation& s, PlayMemory& memory, std::string_view tactic,
+                                                double staging_gap, Ids& reserved, TeamIntents& out) {
+  const std::optional<std::uint32_t> kicker = choose_closest(s, memory.kicker, s.ball);
+  if (!kicker || reserved.contains(*kicker)) return kicker;
+  reserved.add(*kicker);
+  if (s.game->is_ready()) {
+    if (attacker_ready_to_kick(s, *kicker)) {
+      strategy_kick(s, *kicker, out);
+    } else {
+      strategy_approach(s, *kicker, out);
+    }
+    return kicker;
+  }
+  MotionIntent kick_tmpl = base_intent(s, tactic);
+  kick_tmpl.avoid_ball_radius = dribbler_distance(s) + 0.08;
+  write(s, out, *kicker,
+        staging_intent(s, kick_tmpl, s.field.their_goal_center(), dribbler_distance(s) + staging_gap));
+  return kicker;
+}
+
 }  // namespace
 
 const wm::RobotState* find_robot(const Situation& s, std::uint32_t id) {
@@ -529,22 +552,7 @@ void play_our_kickoff(const Situation& s, PlayMemory& memory, TeamIntents& out) 
   tmpl.avoid_ball_radius = s.field.size().center_circle_radius + radius(s) + s.config->keep_away_margin;
   Ids reserved;
   write_keeper(s, tmpl, false, reserved, out);
-  const std::optional<std::uint32_t> kicker = choose_closest(s, memory.kicker, s.ball);
-  if (kicker && !reserved.contains(*kicker)) {
-    reserved.add(*kicker);
-    if (s.game->is_ready()) {
-      if (attacker_ready_to_kick(s, *kicker)) {
-        strategy_kick(s, *kicker, out);
-      } else {
-        strategy_approach(s, *kicker, out);
-      }
-    } else {
-      MotionIntent kick_tmpl = base_intent(s, "kickoff");
-      kick_tmpl.avoid_ball_radius = dribbler_distance(s) + 0.08;
-      write(s, out, *kicker,
-            staging_intent(s, kick_tmpl, s.field.their_goal_center(), dribbler_distance(s) + 0.1));
-    }
-  }
+  const std::optional<std::uint32_t> kicker = take_prepared_kick(s, memory, "kickoff", 0.1, reserved, out);
   fill(s, memory, kOurKickoffKey, our_kickoff_set(s), tmpl, reserved, out);
   keep_kickoff_legal(s, out, kicker);
 }
@@ -565,22 +573,7 @@ void play_our_penalty(const Situation& s, PlayMemory& memory, TeamIntents& out) 
   MotionIntent tmpl = base_intent(s, "penalty_line");
   Ids reserved;
   write_keeper(s, tmpl, false, reserved, out);
-  const std::optional<std::uint32_t> kicker = choose_closest(s, memory.kicker, s.ball);
-  if (kicker && !reserved.contains(*kicker)) {
-    reserved.add(*kicker);
-    if (s.game->is_ready()) {
-      if (attacker_ready_to_kick(s, *kicker)) {
-        strategy_kick(s, *kicker, out);
-      } else {
-        strategy_approach(s, *kicker, out);
-      }
-    } else {
-      MotionIntent kick_tmpl = base_intent(s, "penalty");
-      kick_tmpl.avoid_ball_radius = dribbler_distance(s) + 0.08;
-      write(s, out, *kicker,
-            staging_intent(s, kick_tmpl, s.field.their_goal_center(), dribbler_distance(s) + 0.12));
-    }
-  }
+  take_prepared_kick(s, memory, "penalty", 0.12, reserved, out);
   fill(s, memory, kOurPenaltyKey, line_set(s, s.ball.x() - penalty_line_offset(s), "penalty_line"), tmpl,
        reserved, out);
 }
