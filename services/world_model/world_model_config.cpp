@@ -89,6 +89,10 @@ Fields<CameraAlignmentParams> camera_alignment_fields() {
 
 Fields<WorldModelConfig> core_fields() {
   return {
+      field("carried_ball_after", &WorldModelConfig::carried_ball_after).unit("s").range(0, 1)
+          .doc("without a ball detection this long, a ball last seen at a dribbler counts as hidden by it"),
+      field("carried_ball_timeout", &WorldModelConfig::carried_ball_timeout).unit("s").range(0, 10)
+          .doc("a ball hidden right after touching a dribbler moves with that robot this long"),
       field("chip_window", &WorldModelConfig::chip_window).unit("s").range(0.1, 10)
           .doc("after a kick, how long a chip flight is looked for and tracked"),
       field("align_cameras", &WorldModelConfig::align_cameras)

@@ -188,7 +188,9 @@ void WorldModel::update_ball(std::uint32_t camera_id, std::span<const BallDetect
       }
     }
   }
-  switch (ball_.update(best->position, t, near_robot)) {
+  const BallFilter::UpdateResult result = ball_.update(best->position, t, near_robot);
+  if (result != BallFilter::UpdateResult::kOutlier) carrier_ = dribbler_touching(best->position, t);
+  switch (result) {
     case BallFilter::UpdateResult::kInitialised:
     case BallFilter::UpdateResult::kFused: break;
     case BallFilter::UpdateResult::kOutlier: ++counters_.outliers_rejected; break;
@@ -198,6 +200,23 @@ void WorldModel::update_ball(std::uint32_t camera_id, std::span<const BallDetect
       start_chip_tracking();
       break;
   }
+}
+
+std::optional<WorldModel::RobotKey> WorldModel::dribbler_touching(const Vec2& ball, time::Timestamp t) const {
+  std::optional<RobotKey> touching;
+  double best = config_.possession_distance;
+  for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
+    const TeamTracks& team_tracks = tracks(team);
+    for (std::uint32_t id = 0; id < kMaxRobotsPerTeam; ++id) {
+      if (!team_tracks[id]) continue;
+      const double gap = (dribbler_point(team_tracks[id]->predict_state(t)) - ball).norm();
+      if (gap <= best) {
+        best = gap;
+        touching = RobotKey{team, id};
+      }
+    }
+  }
+  return touching;
 }
 
 void WorldModel::start_chip_tracking() {
@@ -371,6 +390,14 @@ WorldState WorldModel::state_at_vision_time(time::Timestamp t) const {
         position = *held;
         velocity = holder_velocity;
         world.ball.in_dribbler = true;
+      } else if (const Track* carrier = carrier_ ? &tracks(carrier_->team)[carrier_->id] : nullptr;
+                 age > config_.carried_ball_after && age <= config_.carried_ball_timeout && carrier != nullptr &&
+                 *carrier) {
+        // Hidden right after it was seen at a robot's dribbler: that robot has it (an opponent dribbling
+        // it, or ours without feedback), so it moves with the robot, under the camera's view of it.
+        const RobotFilter::State carrier_state = (*carrier)->predict_state(t);
+        position = dribbler_point(carrier_state);
+        velocity = carrier_state.segment<2>(3);
       } else {
         // Predicted through a hidden stretch: a ball cannot pass through a robot; stop it at its hull.
         const double min_gap = config_.robot_radius + field_.size().ball_radius;

@@ -53,6 +53,9 @@ struct WorldModelConfig {
                                         // wall) may be pushed: their filters do not trust the commands
   double dribbler_capture_distance = 0.1;  // m: a detection this close to a holding dribbler is used
   double offset_drift = 1e-5;           // s per frame the clock offset estimate may rise
+  double carried_ball_after = 0.03;     // s without a ball detection (two camera frames): hidden ...
+  double carried_ball_timeout = 1.0;    // s ... right after touching a dribbler: it moves with that robot
+                                        // until this long without a detection
   double chip_window = 1.5;             // s after a kick during which a chip flight is looked for/tracked
   bool align_cameras = true;            // estimate and correct each camera's calibration error
   // Translation only by default: with well calibrated cameras the scale and rotation estimates add about
@@ -129,6 +132,12 @@ class WorldModel {
   void drop_lost_tracks(time::Timestamp t);
   std::optional<Vec2> held_ball_position(time::Timestamp t, std::uint32_t* holder, Vec2* velocity) const;
   Vec2 dribbler_point(const RobotFilter::State& x) const;
+  struct RobotKey {
+    TeamColor team = TeamColor::kBlue;
+    std::uint32_t id = 0;
+  };
+  /// The robot (either team) whose dribbler the ball at `ball` touches at t, if any.
+  std::optional<RobotKey> dribbler_touching(const Vec2& ball, time::Timestamp t) const;
   void start_chip_tracking();
   /// Feeds a ball detection to the chip reconstruction; true while the ball is airborne (the ground
   /// filter must not take it), false otherwise.
@@ -157,6 +166,7 @@ class WorldModel {
   BallFilter ball_;
   CameraAlignment alignment_;
   ChipTrack chip_;
+  std::optional<RobotKey> carrier_;  // touching the ball at its last detection
   std::vector<CameraInfo> cameras_;  // from the geometry: camera centres for the chip reconstruction
   std::array<bool, kMaxRobotsPerTeam> ball_in_dribbler_{};
   std::array<time::Timestamp, kMaxRobotsPerTeam> feedback_time_{};                        // host clock

@@ -547,5 +547,53 @@ TEST(WorldModelAccuracy, ChipKickIsReconstructedInThreeDimensionsUntilItLands) {
   EXPECT_GT(max_height_seen, 0.3);  // true apex 0.44 m
 }
 
+// An opponent dribbles the ball along a curve and its body hides the ball from the cameras (no robot
+// feedback for opponents): the ball stays at that robot's dribbler instead of rolling on straight.
+TEST(WorldModelAccuracy, HiddenBallAtAnOpponentsDribblerMovesWithThatRobot) {
+  // Max error while hidden, and the ball's distance from the robot centre at the end.
+  auto run = [](double carried_ball_timeout) {
+    WorldModelConfig config;
+    config.carried_ball_timeout = carried_ball_timeout;
+    SimHarness h({.robots_per_team = 1, .seed = 8}, config);
+    sim::ControlRequest setup;
+    setup.robots.push_back({.key = {TeamColor::kYellow, 0}, .x = 0.0, .y = 0.0, .orientation = 0.0});
+    setup.robots.push_back({.key = {TeamColor::kBlue, 0}, .x = -4.0, .y = 3.0, .orientation = 0.0});
+    setup.ball = sim::BallTeleport{.x = 0.11, .y = 0.0};
+    EXPECT_TRUE(h.sim().apply(setup).empty());
+    sim::RobotCommand dribble = local(0.8, 0, 1.5);
+    dribble.dribbler_rpm = 10000;
+    h.command(TeamColor::kYellow, {{0, dribble}}, false);
+    const time::Timestamp start = h.now();
+    double max_hidden_error = 0;
+    while (h.now() < start + 1200ms) {
+      sim::StepOutput out = h.sim().step(SimHarness::kStep);
+      for (const auto& frame : out.frames) {
+        DetectionFrame f = testing::from_sim(frame);
+        const double t = time::to_seconds(frame.capture_time - start);
+        const bool hidden = t > 0.8 && t < 1.1;  // the robot turns ~0.45 rad meanwhile
+        if (hidden) f.balls.clear();
+        h.model().on_detection(f, h.now());
+        if (!hidden) continue;
+        const WorldState world = h.model().state_at_vision_time(frame.capture_time);
+        const sim::WorldSnapshot& now = h.sim().snapshot();  // within 2 ms of the capture + delay
+        const Vec2 truth = now.ball.position.head<2>() -
+                           now.ball.velocity.head<2>() * time::to_seconds(h.now() - frame.capture_time);
+        // The model's frame is blue's, with blue on the negative half: it equals the vision frame.
+        max_hidden_error = std::max(max_hidden_error, (world.ball.position.head<2>() - truth).norm());
+      }
+    }
+    const sim::WorldSnapshot& end = h.sim().snapshot();
+    return std::make_pair(max_hidden_error,
+                          (end.ball.position.head<2>() - find_robot(end, TeamColor::kYellow, 0)->position).norm());
+  };
+  const auto [carried, ball_to_robot] = run(1.0);
+  const auto [rolled_on, ignored] = run(0.0);
+  std::printf("[WorldModel] opponent dribbling on a curve, ball hidden 300 ms: max error %.1f mm moving it with the "
+              "robot, %.1f mm predicting it on its own\n", carried * 1e3, rolled_on * 1e3);
+  ASSERT_LT(ball_to_robot, 0.13) << "the simulated robot lost the ball";
+  EXPECT_LT(carried, 0.03);
+  EXPECT_LT(carried, 0.5 * rolled_on);
+}
+
 }  // namespace
 }  // namespace ssl::wm
