@@ -6,6 +6,7 @@
 #include <chrono>
 #include <string>
 
+#include "libs/common/percentile.h"
 #include "services/planner/adapter/convert.h"
 
 namespace ssl::planner {
@@ -14,13 +15,6 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr auto kMaxWait = 5ms;  // longest wait for world.state, so other inputs and health stay current
-
-double percentile(std::vector<double>& values, double q) {
-  if (values.empty()) return 0;
-  const auto index = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index), values.end());
-  return values[index];
-}
 
 }  // namespace
 

@@ -5,19 +5,13 @@
 #include <chrono>
 #include <string>
 
+#include "libs/common/percentile.h"
 #include "services/world_model/adapter/convert.h"
 
 namespace ssl::wm {
 namespace {
 
 using namespace std::chrono_literals;
-
-double percentile(std::vector<double>& values, double q) {
-  if (values.empty()) return 0;
-  const auto index = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index), values.end());
-  return values[index];
-}
 
 }  // namespace
 
