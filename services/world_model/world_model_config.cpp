@@ -15,8 +15,15 @@ Fields<RobotFilterParams> robot_fields() {
       field("orientation_stddev", &RobotFilterParams::orientation_stddev).unit("rad").range(1e-4, 1),
       field("acceleration_stddev", &RobotFilterParams::acceleration_stddev).unit("m/s^2").range(0.01, 100)
           .doc("prior spread of the acceleration when the uncommanded model takes over"),
-      field("jerk_stddev", &RobotFilterParams::jerk_stddev).unit("m/s^3/sqrt(Hz)").range(0.01, 1000)
-          .doc("white jerk density of the uncommanded (Singer) model: enemy robots"),
+      field("mode_jerk_stddev", &RobotFilterParams::mode_jerk_stddev).unit("m/s^3/sqrt(Hz)")
+          .range(0.001, 1000).length(1, RobotFilter::kMaxJerkModes)
+          .doc("white jerk densities of the uncommanded (Singer) model, one IMM mode each: enemy robots"),
+      field("mode_switch_rate", &RobotFilterParams::mode_switch_rate).unit("1/s").range(0.001, 100)
+          .doc("expected switches per second between those modes"),
+      field("stationary_mode", &RobotFilterParams::stationary_mode)
+          .doc("one more IMM mode: the robot stands (velocity zero)"),
+      field("stationary_drift_stddev", &RobotFilterParams::stationary_drift_stddev).unit("m/sqrt(s)")
+          .range(1e-6, 1).doc("how far a standing robot's position may drift (pushed)"),
       field("acceleration_time_constant", &RobotFilterParams::acceleration_time_constant).unit("s")
           .range(0, 100).doc("without a command the acceleration decays with it (0: held)"),
       field("commanded_acceleration_stddev", &RobotFilterParams::commanded_acceleration_stddev)

@@ -18,5 +18,21 @@ TEST(WorldModelConfig, DeployedFileLoadsAndTeamOverrideApplies) {
   EXPECT_FALSE(load_world_model_config(*path, {"team=green"}));
 }
 
+TEST(WorldModelConfig, ImmModesNeedOneToFourJerkDensities) {
+  auto path = find_deploy_file("config/world_model.yaml");
+  ASSERT_TRUE(path) << path.error().message;
+  auto deployed = load_world_model_config(*path, {});
+  ASSERT_TRUE(deployed) << deployed.error().message;
+  EXPECT_EQ(deployed->core.robot.mode_jerk_stddev, (std::vector<double>{0.02, 1.0, 6.0}));
+  auto two = load_world_model_config(*path, {"filter.robot.mode_jerk_stddev=[0.05, 5]"});
+  ASSERT_TRUE(two) << two.error().message;
+  EXPECT_EQ(two->core.robot.mode_jerk_stddev.size(), 2u);
+  auto none = load_world_model_config(*path, {"filter.robot.mode_jerk_stddev=[]"});
+  ASSERT_FALSE(none);
+  EXPECT_NE(none.error().message.find("mode_jerk_stddev"), std::string::npos) << none.error().message;
+  EXPECT_FALSE(load_world_model_config(*path, {"filter.robot.mode_jerk_stddev=[1, 2, 3, 4, 5]"}));
+  EXPECT_FALSE(load_world_model_config(*path, {"filter.robot.mode_jerk_stddev=[1, -2]"}));
+}
+
 }  // namespace
 }  // namespace ssl::wm

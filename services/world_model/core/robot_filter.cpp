@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 #include "libs/geometry/angle.h"
 
@@ -18,7 +20,12 @@ double ramp(double current, double target, double max_step) {
 
 RobotFilter::RobotFilter(const RobotFilterParams& params, const RobotDetection& detection,
                          time::Timestamp t_capture)
-    : params_(params) {
+    : params_(params),
+      mode_count_(std::clamp<std::size_t>(params.mode_jerk_stddev.size(), 1, kMaxJerkModes) +
+                  (params.stationary_mode ? 1 : 0)) {
+  if (params_.mode_jerk_stddev.empty() || params_.mode_jerk_stddev.size() > kMaxJerkModes) {
+    throw std::invalid_argument("RobotFilterParams::mode_jerk_stddev needs 1 to 4 values");
+  }
   reset(detection, t_capture);
 }
 
@@ -35,6 +42,9 @@ void RobotFilter::reset(const RobotDetection& detection, time::Timestamp t_captu
   time_ = t_capture;
   last_update_ = t_capture;
   teleport_candidate_.reset();
+  modes_stale_ = true;
+  mode_probability_.fill(0);
+  std::fill_n(mode_probability_.begin(), mode_count_, 1.0 / static_cast<double>(mode_count_));
 }
 
 void RobotFilter::set_command(const RobotCommand& command, time::Timestamp t_vision) {
@@ -137,7 +147,7 @@ RobotFilter::State RobotFilter::free_step(const State& x, double dt, bool turnin
   return f;
 }
 
-RobotFilter::State RobotFilter::step(const State& x, double dt, const RobotCommand* command,
+RobotFilter::State RobotFilter::step(const State& x, double dt, const RobotCommand* command, double jerk_stddev,
                                      Filter::StateMatrix* jacobian, Filter::StateMatrix* noise) const {
   // In contact without a command: constant velocity, the acceleration forgotten (reset to its prior).
   State f = x;
@@ -211,7 +221,7 @@ RobotFilter::State RobotFilter::step(const State& x, double dt, const RobotComma
   Q.setZero();
   if (free) {
     // Continuous white jerk (integrated three times), per axis over [p, v, a].
-    const double q = params_.jerk_stddev * params_.jerk_stddev * noise_scale_;
+    const double q = jerk_stddev * jerk_stddev * noise_scale_;
     const double d2 = adt * adt, d3 = d2 * adt, d4 = d3 * adt, d5 = d4 * adt;
     for (int i = 0; i < 2; ++i) {
       Q(i, i) = q * d5 / 20;
@@ -240,14 +250,16 @@ RobotFilter::State RobotFilter::step(const State& x, double dt, const RobotComma
   return f;
 }
 
-void RobotFilter::predict_to(Filter& filter, time::Timestamp from, time::Timestamp to) const {
+void RobotFilter::predict_to(Filter& filter, time::Timestamp from, time::Timestamp to,
+                             double jerk_stddev) const {
   // x = f(x), P = F P F^T + Q. Products of 8x8 matrices are written as lazy (coefficient-wise, unrolled)
   // products: Eigen would send them to its cache-blocked GEMM, several times slower at this size.
   Filter::StateMatrix jacobian;
   Filter::StateMatrix noise;
   while (from < to) {
     const time::Timestamp until = next_command_change(from, to);
-    State x = step(filter.state(), time::to_seconds(until - from), command_at(from), &jacobian, &noise);
+    State x = step(filter.state(), time::to_seconds(until - from), command_at(from), jerk_stddev, &jacobian,
+                   &noise);
     x(2) = wrap(x(2));
     filter.mutable_state() = x;
     const Filter::StateMatrix fp = jacobian.lazyProduct(filter.covariance());
@@ -262,7 +274,7 @@ RobotFilter::State RobotFilter::predict_state(time::Timestamp t) const {
     State x = filter_.state();
     for (time::Timestamp from = time_; from < t;) {
       const time::Timestamp until = next_command_change(from, t);
-      x = step(x, time::to_seconds(until - from), command_at(from), nullptr, nullptr);
+      x = step(x, time::to_seconds(until - from), command_at(from), 0, nullptr, nullptr);
       x(2) = wrap(x(2));
       from = until;
     }
@@ -294,7 +306,11 @@ void RobotFilter::score_motion_models(const RobotDetection& detection, double dt
 
 RobotFilter::UpdateResult RobotFilter::update(const RobotDetection& detection, time::Timestamp t_capture,
                                               bool in_contact) {
-  in_contact_ = in_contact;
+  // Contact makes a command untrustworthy; without one it changes nothing (the IMM's loose modes take the
+  // pushes), so an uncommanded robot next to others keeps the IMM's smoothing.
+  in_contact_ = false;
+  const bool commanded = command_at(std::min(time_, t_capture)) != nullptr || command_at(t_capture) != nullptr;
+  in_contact_ = in_contact && commanded;
   score_motion_models(detection, time::to_seconds(t_capture - time_));
   // Gate: how far could the robot have got from the prediction?
   const double dt = time::to_seconds(t_capture - time_);
@@ -314,57 +330,223 @@ RobotFilter::UpdateResult RobotFilter::update(const RobotDetection& detection, t
   }
   teleport_candidate_.reset();
 
-  // Adaptive process noise: a detection that the low-noise model cannot explain (collision, wall, a
-  // command the robot did not follow) re-runs the prediction with maneuver_noise_scale times the noise.
-  const State x_before = filter_.state();
-  const Filter::StateMatrix p_before = filter_.covariance();
-  if (dt > 0) predict_to(filter_, time_, t_capture);
-  const double lag = std::min(0.0, dt);  // <= 0: detection older than the filter state
-  set_measurement(detection, lag);
-  Filter::Measurement y = measurement_innovation(detection);
-  // The Kalman update, as KalmanFilter::update_with_innovation (Joseph form) but with lazy products (see
-  // predict_to()) and S computed once for the gate and the gain.
-  Eigen::Matrix<double, 8, 3> pht = filter_.covariance().lazyProduct(filter_.H.transpose());
-  Filter::MeasurementCovariance s_inv = (filter_.H.lazyProduct(pht) + filter_.R).inverse();
-  if (dt > 0 && y.dot(s_inv * y) > params_.maneuver_gate) {
-    filter_.mutable_state() = x_before;
-    filter_.mutable_covariance() = p_before;
-    noise_scale_ = params_.maneuver_noise_scale;
-    predict_to(filter_, time_, t_capture);
-    noise_scale_ = 1;
-    y = measurement_innovation(detection);
-    pht = filter_.covariance().lazyProduct(filter_.H.transpose());
-    s_inv = (filter_.H.lazyProduct(pht) + filter_.R).inverse();
+  if (!commanded && mode_count_ > 1) {
+    update_modes(detection, t_capture);
+  } else {
+    // Commanded (or in contact): one filter. A command that expires inside the interval leaves a free
+    // piece, predicted with the loosest jerk density.
+    predict_and_fuse(filter_, detection, t_capture, params_.mode_jerk_stddev.back());
+    modes_stale_ = true;
   }
   if (dt > 0) time_ = t_capture;
-  const Eigen::Matrix<double, 8, 3> gain = pht.lazyProduct(s_inv);
-  filter_.mutable_state() += gain.lazyProduct(y);
-  filter_.mutable_state()(2) = wrap(filter_.state()(2));
-  const Filter::StateMatrix i_kh = Filter::StateMatrix::Identity() - gain.lazyProduct(filter_.H);
-  const Filter::StateMatrix kp = i_kh.lazyProduct(filter_.covariance());
-  const Eigen::Matrix<double, 8, 3> kr = gain * filter_.R.diagonal().asDiagonal();
-  filter_.mutable_covariance() = kp.lazyProduct(i_kh.transpose()) + kr.lazyProduct(gain.transpose());
   last_update_ = std::max(last_update_, t_capture);
   return UpdateResult::kFused;
 }
 
-void RobotFilter::set_measurement(const RobotDetection& detection, double lag) {
-  filter_.H.setZero();
-  filter_.H(0, 0) = filter_.H(1, 1) = filter_.H(2, 2) = 1;
-  filter_.H(0, 3) = filter_.H(1, 4) = filter_.H(2, 5) = lag;
-  filter_.H(0, 6) = filter_.H(1, 7) = lag * lag / 2;
+RobotFilter::Innovation RobotFilter::innovation_of(const Filter& filter, const RobotDetection& detection,
+                                                   double lag) const {
+  // The measurement: x, y and (when detected) the heading of the state `lag` (<= 0) seconds back, i.e.
+  // H = [I_3 | lag I_3 | lag^2/2 I_2 (position rows)]. Lazy products: Eigen would send these small
+  // fixed-size products to its cache-blocked GEMM.
   const double sp = params_.position_stddev;
   const double so = detection.has_orientation ? params_.orientation_stddev : 1e3;
-  filter_.R.setZero();
-  filter_.R.diagonal() << sp * sp, sp * sp, so * so;
+  const State& x = filter.state();
+  const Filter::StateMatrix& p = filter.covariance();
+  Innovation out;
+  if (lag == 0) {
+    // H picks x, y and the heading: P H^T is P's first three columns.
+    out.y << detection.position.x() - x(0), detection.position.y() - x(1),
+        detection.has_orientation ? wrap(detection.orientation - x(2)) : 0;
+    out.pht = p.leftCols<3>();
+    out.s = out.pht.topRows<3>();
+  } else {
+    Filter::MeasurementMatrix h = Filter::MeasurementMatrix::Zero();
+    h(0, 0) = h(1, 1) = h(2, 2) = 1;
+    h(0, 3) = h(1, 4) = h(2, 5) = lag;
+    h(0, 6) = h(1, 7) = lag * lag / 2;
+    const Filter::Measurement predicted = h.lazyProduct(x);
+    out.y << detection.position.x() - predicted(0), detection.position.y() - predicted(1),
+        detection.has_orientation ? wrap(detection.orientation - predicted(2)) : 0;
+    out.pht = p.lazyProduct(h.transpose());
+    out.s = h.lazyProduct(out.pht);
+  }
+  out.s.diagonal() += Eigen::Vector3d(sp * sp, sp * sp, so * so);
+  out.s_inv = out.s.inverse();
+  out.mahalanobis2 = out.y.dot(out.s_inv * out.y);
+  return out;
 }
 
-RobotFilter::Filter::Measurement RobotFilter::measurement_innovation(const RobotDetection& detection) const {
-  Filter::Measurement z;
-  z << detection.position.x(), detection.position.y(), detection.has_orientation ? detection.orientation : 0;
-  Filter::Measurement y = filter_.innovation(z);
-  y(2) = detection.has_orientation ? wrap(y(2)) : 0;
-  return y;
+double RobotFilter::fuse(Filter& filter, const Innovation& in) {
+  const Eigen::Matrix<double, 8, 3> gain = in.pht.lazyProduct(in.s_inv);
+  filter.mutable_state() += gain.lazyProduct(in.y);
+  filter.mutable_state()(2) = wrap(filter.state()(2));
+  // P - K H P with H P = (P H^T)^T, symmetrised: a fifth of the Joseph form's work, and with the optimal
+  // gain the same result up to rounding.
+  Filter::StateMatrix& p = filter.mutable_covariance();
+  p -= gain.lazyProduct(in.pht.transpose());
+  p = 0.5 * (p + p.transpose()).eval();
+  return -0.5 * (in.mahalanobis2 + std::log(in.s.determinant()));
+}
+
+void RobotFilter::predict_and_fuse(Filter& filter, const RobotDetection& detection, time::Timestamp t_capture,
+                                   double jerk_stddev) {
+  const double dt = time::to_seconds(t_capture - time_);
+  // Adaptive process noise: a detection that the low-noise model cannot explain (collision, wall, a
+  // command the robot did not follow) re-runs the prediction with maneuver_noise_scale times the noise.
+  const State x_before = filter.state();
+  const Filter::StateMatrix p_before = filter.covariance();
+  if (dt > 0) predict_to(filter, time_, t_capture, jerk_stddev);
+  const double lag = std::min(0.0, dt);  // <= 0: detection older than the state
+  Innovation innovation = innovation_of(filter, detection, lag);
+  if (dt > 0 && innovation.mahalanobis2 > params_.maneuver_gate) {
+    filter.mutable_state() = x_before;
+    filter.mutable_covariance() = p_before;
+    noise_scale_ = params_.maneuver_noise_scale;
+    predict_to(filter, time_, t_capture, jerk_stddev);
+    noise_scale_ = 1;
+    innovation = innovation_of(filter, detection, lag);
+  }
+  fuse(filter, innovation);
+}
+
+void RobotFilter::update_modes(const RobotDetection& detection, time::Timestamp t_capture) {
+  const std::size_t n = mode_count_;
+  // The difference of two states, the heading wrapped.
+  auto difference = [](const State& a, const State& b) {
+    State d = a - b;
+    d(2) = wrap(d(2));
+    return d;
+  };
+  if (modes_stale_) {
+    for (std::size_t j = 0; j < n; ++j) modes_[j].reset(filter_.state(), filter_.covariance());
+    modes_stale_ = false;
+  }
+  const double dt = time::to_seconds(t_capture - time_);
+  const double lag = std::min(0.0, dt);  // <= 0: detection older than the modes' state
+  std::array<double, kMaxModes> prior = mode_probability_;  // of each mode after the switches over dt
+  if (dt > 0) {
+    // Mixing: over dt a robot leaves its mode with rate mode_switch_rate, to each other mode alike; each
+    // mode starts from the mixture of the modes it may have come from. With the modes' offsets y_i from a
+    // reference and A_i = P_i + y_i y_i^T, mode j starts at m_j = sum_i w_ij y_i with covariance
+    // sum_i w_ij A_i - m_j m_j^T (the spread of the means included). As w_ij = (move + (stay - move)
+    // [i = j]) mu_i / prior_j, both sums are one shared total plus mode j's own term.
+    const double stay = std::exp(-params_.mode_switch_rate * dt);
+    const double move = (1 - stay) / static_cast<double>(n - 1);
+    const State reference = modes_[0].state();
+    std::array<State, kMaxModes> offset;
+    State offset_total = State::Zero();
+    Filter::StateMatrix moment_total = Filter::StateMatrix::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      offset[i] = difference(modes_[i].state(), reference);
+      Filter::StateMatrix& p = modes_[i].mutable_covariance();
+      p += offset[i].lazyProduct(offset[i].transpose());  // A_i, in place: P_i is replaced below
+      offset_total += mode_probability_[i] * offset[i];
+      moment_total += mode_probability_[i] * p;
+    }
+    for (std::size_t j = 0; j < n; ++j) {
+      const double own = (stay - move) * mode_probability_[j];
+      prior[j] = move + own;  // sum_i (move + (stay - move) [i = j]) mu_i, the mu_i summing to 1
+      const State mean = (move * offset_total + own * offset[j]) / prior[j];
+      Filter::StateMatrix& p = modes_[j].mutable_covariance();
+      p = (move * moment_total + own * p) / prior[j] - mean.lazyProduct(mean.transpose());
+      State x = reference + mean;
+      x(2) = wrap(x(2));
+      modes_[j].mutable_state() = x;
+    }
+  }
+  // Each mode predicts (one Jacobian and noise shape for all, at the estimate: the modes are close) and
+  // fuses; the detection's likelihood under each prediction weighs the modes. Only the loosest mode
+  // re-predicts beyond the maneuver gate (a collision): in the others a surprise is what moves the
+  // probability to the loosest.
+  Filter::StateMatrix jacobian;
+  Filter::StateMatrix jerk_noise;  // the free step's Q with a jerk density of 1, without its heading part
+  Filter::StateMatrix angular_noise = Filter::StateMatrix::Zero();  // the heading part (no jerk)
+  Eigen::Matrix<double, 8, 5> jacobian_offset;  // F - I in columns 3-7 (see below)
+  if (dt > 0) {
+    step(filter_.state(), dt, nullptr, 1.0, &jacobian, &jerk_noise);
+    for (int r : {2, 5}) {
+      for (int c : {2, 5}) {
+        angular_noise(r, c) = jerk_noise(r, c);
+        jerk_noise(r, c) = 0;
+      }
+    }
+    jacobian_offset = jacobian.rightCols<5>() - Filter::StateMatrix::Identity().rightCols<5>();
+  }
+  std::array<double, kMaxModes> log_likelihood{};
+  double best = -std::numeric_limits<double>::infinity();
+  const std::size_t first_jerk_mode = params_.stationary_mode ? 1 : 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    Filter& mode = modes_[j];
+    Filter::StateMatrix fpft;
+    if (j < first_jerk_mode) {
+      // Stationary: the velocity and acceleration are zero (known: a tiny variance keeps S well posed),
+      // the position drifts a little, the heading turns as in the others (robots turn on the spot).
+      if (dt > 0) {
+        State x = mode.state();
+        x(2) = wrap(x(2) + dt * x(5));
+        x.segment<2>(3).setZero();
+        x.segment<2>(6).setZero();
+        mode.mutable_state() = x;
+        Filter::StateMatrix& p = mode.mutable_covariance();
+        p.row(2) += dt * p.row(5);
+        p.col(2) += dt * p.col(5);
+        for (int k : {3, 4, 6, 7}) {
+          p.row(k).setZero();
+          p.col(k).setZero();
+        }
+        p += angular_noise;
+        const double drift = params_.stationary_drift_stddev * params_.stationary_drift_stddev * dt;
+        p(0, 0) += drift;
+        p(1, 1) += drift;
+        for (int k : {3, 4, 6, 7}) p(k, k) = 1e-8;
+      }
+      log_likelihood[j] = fuse(mode, innovation_of(mode, detection, lag));
+      best = std::max(best, log_likelihood[j]);
+      continue;
+    }
+    const double jerk = params_.mode_jerk_stddev[j - first_jerk_mode];
+    const bool loosest = j + 1 == n;
+    if (dt > 0) {
+      State x = free_step(mode.state(), dt, turn_model_, nullptr);
+      x(2) = wrap(x(2));
+      mode.mutable_state() = x;
+      // F = I + E with E non-zero only in columns 3-7 (in the free models nothing depends on position or
+      // heading): F P F^T = G + G_{:,3:7} E_{:,3:7}^T with G = P + E_{:,3:7} P_{3:7,:}, 40 % fewer products.
+      Filter::StateMatrix& p = mode.mutable_covariance();
+      const Eigen::Matrix<double, 8, 5>& e = jacobian_offset;
+      const Filter::StateMatrix g = p + e.lazyProduct(p.bottomRows<5>());
+      p = g + g.rightCols<5>().lazyProduct(e.transpose());
+      if (loosest) fpft = p;  // kept for a re-prediction
+      p += jerk * jerk * jerk_noise + angular_noise;
+    }
+    Innovation innovation = innovation_of(mode, detection, lag);
+    if (loosest && dt > 0 && innovation.mahalanobis2 > params_.maneuver_gate) {
+      mode.mutable_covariance() = fpft + params_.maneuver_noise_scale * (jerk * jerk * jerk_noise + angular_noise);
+      innovation = innovation_of(mode, detection, lag);
+    }
+    log_likelihood[j] = fuse(mode, innovation);
+    best = std::max(best, log_likelihood[j]);
+  }
+  double total = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    // A floor keeps every mode alive through out-of-order detections (no mixing when dt <= 0).
+    mode_probability_[j] = std::max(1e-9, prior[j] * std::exp(log_likelihood[j] - best));
+    total += mode_probability_[j];
+  }
+  for (std::size_t j = 0; j < n; ++j) mode_probability_[j] /= total;
+  // The estimate: the probability-weighted mixture of the modes.
+  const State reference = modes_[0].state();
+  State mean = State::Zero();
+  Filter::StateMatrix moment = Filter::StateMatrix::Zero();
+  for (std::size_t j = 0; j < n; ++j) {
+    const State d = difference(modes_[j].state(), reference);
+    mean += mode_probability_[j] * d;
+    moment += mode_probability_[j] * (modes_[j].covariance() + d.lazyProduct(d.transpose()));
+  }
+  State combined = reference + mean;
+  combined(2) = wrap(combined(2));
+  filter_.mutable_state() = combined;
+  filter_.mutable_covariance() = moment - mean.lazyProduct(mean.transpose());
 }
 
 }  // namespace ssl::wm

@@ -15,8 +15,15 @@
 //    LOCAL velocity command: then the velocity itself turns with the robot); the one whose one-step
 //    predictions recently matched the detections better is used. Both mean the same state, so switching
 //    needs no conversion.
-//  * CONTACT (the world model says the robot touches another robot or a wall): forces we do not know
-//    act on it, so commands are ignored, the velocity is constant and the process noise is higher.
+//    How hard the robot manoeuvres is not known either: an interacting multiple model (IMM) runs one
+//    filter per jerk density (mode_jerk_stddev: e.g. standing or gliding, steering, sprinting and
+//    braking), mixes them before each step (Markov switching at mode_switch_rate) and weighs them by how
+//    well each predicted the detection. A stationary mode (velocity zero, the position drifting a little)
+//    comes first: robots stand a lot in a match. A robot that stands or glides gets the smoothing of a
+//    near-constant model, one that brakes hard the agility of a loose one, without a compromise for both.
+//  * CONTACT (the world model says a commanded robot touches another robot or a wall): forces we do not
+//    know act on it, so commands are ignored, the velocity is constant and the process noise is higher.
+//    Without a command contact changes nothing: the IMM's loose modes take the push.
 //
 // Out-of-order measurements (cameras are staggered and their delays jitter) are fused without rewinding:
 // a detection captured dt before the filter time is modelled as z = p - v dt + a dt^2 / 2.
@@ -26,6 +33,7 @@
 
 #include <array>
 #include <optional>
+#include <vector>
 
 #include "services/world_model/core/kalman_filter.h"
 #include "services/world_model/core/types.h"
@@ -53,7 +61,12 @@ struct RobotFilterParams {
   double motion_model_memory = 0.95;      // per detection: weight of the past in that choice
   double contact_acceleration_stddev = 4.0;  // m/s^2, process noise while touching a robot or a wall
   double contact_angular_acceleration_stddev = 30;  // rad/s^2
-  double jerk_stddev = 2.0;                 // m/s^3 per sqrt(Hz): white jerk density without a command
+  // m/s^3 per sqrt(Hz): white jerk densities of the uncommanded model, one IMM mode each (1 to
+  // kMaxJerkModes, ascending; one value and no stationary mode: a single filter).
+  std::vector<double> mode_jerk_stddev = {0.02, 1.0, 6.0};
+  bool stationary_mode = true;              // one more IMM mode: the robot stands (velocity zero) ...
+  double stationary_drift_stddev = 0.0005;  // m per sqrt(s) ... its position drifts this much (pushed)
+  double mode_switch_rate = 0.2;            // 1/s: expected switches between the modes
   double acceleration_time_constant = 0.5;  // s, without a command the acceleration decays so (0: held)
 };
 
@@ -61,6 +74,8 @@ class RobotFilter {
  public:
   using Filter = KalmanFilter<8, 3>;
   using State = Filter::State;
+  static constexpr std::size_t kMaxJerkModes = 4;              // IMM modes of the uncommanded model ...
+  static constexpr std::size_t kMaxModes = kMaxJerkModes + 1;  // ... and the stationary one
 
   enum class UpdateResult { kFused, kOutlier, kTeleported };
 
@@ -84,6 +99,10 @@ class RobotFilter {
   const Filter& filter() const { return filter_; }
   /// Uncommanded steps currently use the model whose velocity turns with the robot (else constant).
   bool uses_turning_model() const { return turn_model_; }
+  /// IMM modes: the stationary one first (when enabled), then one per mode_jerk_stddev, ascending.
+  std::size_t mode_count() const { return mode_count_; }
+  /// Probability of IMM mode `mode` after the last uncommanded update.
+  double mode_probability(std::size_t mode) const { return mode < mode_count_ ? mode_probability_[mode] : 0; }
 
  private:
   struct TimedCommand {
@@ -91,12 +110,33 @@ class RobotFilter {
     time::Timestamp effective;  // vision clock: sent + command_delay
   };
 
-  /// Commits the prediction of `filter` (whose state is at `from`) to `to`, command piece by piece.
-  void predict_to(Filter& filter, time::Timestamp from, time::Timestamp to) const;
+  /// Commits the prediction of `filter` (whose state is at `from`) to `to`, command piece by piece;
+  /// uncommanded pieces with white jerk density `jerk_stddev` (m/s^3/sqrt(Hz)).
+  void predict_to(Filter& filter, time::Timestamp from, time::Timestamp to, double jerk_stddev) const;
   /// One prediction step of the motion model over dt > 0 with `command` (nullptr: none): returns f(x);
-  /// its Jacobian and process noise into `jacobian` and `noise` when given.
-  State step(const State& x, double dt, const RobotCommand* command, Filter::StateMatrix* jacobian,
-             Filter::StateMatrix* noise) const;
+  /// its Jacobian and process noise (uncommanded: jerk density `jerk_stddev`) into `jacobian` and
+  /// `noise` when given.
+  State step(const State& x, double dt, const RobotCommand* command, double jerk_stddev,
+             Filter::StateMatrix* jacobian, Filter::StateMatrix* noise) const;
+  /// A detection against a filter's prediction: y, P H^T, S, S^-1 and y^T S^-1 y.
+  struct Innovation {
+    Filter::Measurement y;
+    Eigen::Matrix<double, 8, 3> pht;
+    Filter::MeasurementCovariance s;
+    Filter::MeasurementCovariance s_inv;
+    double mahalanobis2 = 0;
+  };
+  /// The detection against `filter`'s state `lag` (<= 0) seconds back.
+  Innovation innovation_of(const Filter& filter, const RobotDetection& detection, double lag) const;
+  /// The Kalman update with `innovation`; returns the log-likelihood of the detection (up to a constant).
+  static double fuse(Filter& filter, const Innovation& innovation);
+  /// Predicts `filter` from time_ to t_capture (when later) and fuses the detection; beyond maneuver_gate
+  /// the prediction is redone with maneuver_noise_scale times the process noise.
+  void predict_and_fuse(Filter& filter, const RobotDetection& detection, time::Timestamp t_capture,
+                        double jerk_stddev);
+  /// The IMM cycle over the uncommanded modes: mixing, each mode's prediction (one Jacobian for all) and
+  /// update, the mode probabilities, and the combined estimate into filter_.
+  void update_modes(const RobotDetection& detection, time::Timestamp t_capture);
   /// The uncommanded (Singer) step over dt > 0, the acceleration held in the field or, without its
   /// centripetal part, turning with the robot; its Jacobian into `jacobian` when given.
   State free_step(const State& x, double dt, bool turning, Filter::StateMatrix* jacobian) const;
@@ -106,11 +146,13 @@ class RobotFilter {
   time::Timestamp next_command_change(time::Timestamp from, time::Timestamp to) const;
   void reset(const RobotDetection& detection, time::Timestamp t_capture);
   void score_motion_models(const RobotDetection& detection, double dt);
-  void set_measurement(const RobotDetection& detection, double lag);
-  Filter::Measurement measurement_innovation(const RobotDetection& detection) const;
 
   RobotFilterParams params_;
-  Filter filter_;
+  Filter filter_;                // the estimate (uncommanded: the IMM's combination of the modes)
+  std::array<Filter, kMaxModes> modes_;               // uncommanded: one filter per mode
+  std::array<double, kMaxModes> mode_probability_{};  // sums to 1 over the first mode_count_
+  std::size_t mode_count_ = 1;
+  bool modes_stale_ = true;      // filter_ moved without the modes (commanded step, reset): restart them
   double noise_scale_ = 1;       // process noise variance factor of the current prediction
   bool in_contact_ = false;      // touching a robot or a wall: commands are not trusted (see update())
   double turn_score_ = 0;        // > 0: the constant-velocity model explained recent detections better

@@ -4,6 +4,9 @@
 // and the filtered state (after fusing that frame) vs the truth. Figures are printed.
 #include <gtest/gtest.h>
 
+#include <Eigen/QR>
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -50,6 +53,59 @@ sim::RobotCommand local(double forward, double left, double angular, double kick
   return c;
 }
 
+// A reference for what kinematics alone can do on a motion: causal sliding-window polynomial fits. The
+// estimate at each detection is the least-squares polynomial (degree 1-4) through that robot's detections
+// of the last `window` seconds, evaluated at the detection's instant; the best degree and window are
+// chosen with hindsight (an advantage no real filter has).
+struct EnemySample {
+  double t = 0;  // s
+  std::uint32_t id = 0;
+  Vec2 detected = Vec2::Zero();
+  Vec2 truth = Vec2::Zero();
+};
+
+struct PolynomialFit {
+  double reduction_pct = -1e9;  // position RMS error below the raw detections'
+  int degree = 0;
+  double window = 0;  // s
+};
+
+PolynomialFit best_polynomial_fit(std::vector<EnemySample> samples, double measure_from) {
+  std::stable_sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
+  double raw = 0;
+  for (const EnemySample& s : samples) {
+    if (s.t >= measure_from) raw += (s.detected - s.truth).squaredNorm();
+  }
+  PolynomialFit best;
+  for (int degree = 1; degree <= 4; ++degree) {
+    for (double window : {0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8, 1.0}) {
+      std::map<std::uint32_t, std::vector<const EnemySample*>> history;
+      double error = 0;
+      for (const EnemySample& s : samples) {
+        std::vector<const EnemySample*>& h = history[s.id];
+        h.push_back(&s);
+        if (s.t < measure_from) continue;
+        std::vector<const EnemySample*> used;
+        for (const EnemySample* past : h) {
+          if (past->t >= s.t - window) used.push_back(past);
+        }
+        const int d = std::min<int>(degree, static_cast<int>(used.size()) - 1);
+        Eigen::MatrixXd a(used.size(), d + 1);
+        Eigen::MatrixXd b(used.size(), 2);
+        for (std::size_t i = 0; i < used.size(); ++i) {
+          for (int k = 0; k <= d; ++k) a(i, k) = std::pow(used[i]->t - s.t, k);
+          b.row(i) = used[i]->detected.transpose();
+        }
+        const Eigen::MatrixXd coefficients = a.colPivHouseholderQr().solve(b);
+        error += (Vec2(coefficients(0, 0), coefficients(0, 1)) - s.truth).squaredNorm();
+      }
+      const double reduction = 100 * (1 - std::sqrt(error / raw));
+      if (reduction > best.reduction_pct) best = {reduction, degree, window};
+    }
+  }
+  return best;
+}
+
 // Ball errors at each frame's capture time: the first raw detection and the filtered state vs the truth,
 // and the filtered velocity vs finite differences of the raw detections.
 struct BallErrors {
@@ -76,6 +132,7 @@ struct BallErrors {
 TEST(WorldModelAccuracy, RobotPositionAndVelocityRmsAtLeastHalfOfRawUnderRealisticNoise) {
   SimHarness h({.robots_per_team = 6, .seed = 11});
   Rms raw_pos, filt_pos, raw_ori, filt_ori, filt_vel, naive_vel, enemy_raw, enemy_filt;
+  std::vector<EnemySample> enemy_samples;
   std::map<std::pair<int, std::uint32_t>, std::pair<time::Timestamp, Vec2>> last_raw;
   time::Timestamp t_cmd;
   const time::Timestamp start = h.now();
@@ -94,8 +151,13 @@ TEST(WorldModelAccuracy, RobotPositionAndVelocityRmsAtLeastHalfOfRawUnderRealist
     }
   };
   h.run(8s, drive, [&](const sim::DetectionFrame& frame) {
-    if (time::to_seconds(frame.capture_time - start) < 1.0) return;
+    const double t = time::to_seconds(frame.capture_time - start);
     const sim::WorldSnapshot& truth = h.truth(frame.capture_time);
+    for (const auto& d : frame.robots_yellow) {
+      const Vec2 true_position = find_robot(truth, TeamColor::kYellow, d.robot_id)->position;
+      enemy_samples.push_back({t, d.robot_id, Vec2(d.x, d.y), true_position});
+    }
+    if (t < 1.0) return;
     const WorldState world = h.model().state_at_vision_time(frame.capture_time);
     for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
       const auto& detections = team == TeamColor::kBlue ? frame.robots_blue : frame.robots_yellow;
@@ -131,15 +193,22 @@ TEST(WorldModelAccuracy, RobotPositionAndVelocityRmsAtLeastHalfOfRawUnderRealist
               raw_pos.n, raw_pos.value() * 1e3, filt_pos.value() * 1e3,
               100 * (1 - filt_pos.value() / raw_pos.value()), raw_ori.value(), filt_ori.value(), filt_vel.value(),
               naive_vel.value());
+  const PolynomialFit reference = best_polynomial_fit(enemy_samples, 1.0);
+  const double enemy_reduction = 100 * (1 - enemy_filt.value() / enemy_raw.value());
   std::printf("[WorldModel] enemy robots (no commands known): position RMS raw %.2f mm, filtered %.2f mm "
-              "(%.0f%% lower)\n", enemy_raw.value() * 1e3, enemy_filt.value() * 1e3,
-              100 * (1 - enemy_filt.value() / enemy_raw.value()));
+              "(%.0f%% lower); best causal polynomial fit %.0f%% lower (degree %d, %.2f s window)\n",
+              enemy_raw.value() * 1e3, enemy_filt.value() * 1e3, enemy_reduction, reference.reduction_pct,
+              reference.degree, reference.window);
   EXPECT_GT(raw_pos.n, 1000u);
   // Our robots (commands known): the design's >= 50 % (measured 58 %, seed 11). Enemy robots (no commands:
-  // Singer acceleration model) measured 37 % (37-38 % over seeds 3, 7, 23), guarded at 30 %: a regression
-  // fails. 50 % is not reached: at 75 Hz and 2 mm noise a model loose enough for this motion cannot do it.
+  // IMM over Singer jerk densities) measured 42 % (43 % at seeds 3 and 7), guarded at 35 %. This motion
+  // never rests (every robot turns and changes speed all the time, against walls and each other), and
+  // without its commands no kinematic estimator gets to 50 % here: the best causal polynomial fit over any
+  // window (degree 1-4, chosen with hindsight) reaches 26 %. A match's motion is measured in tests/simulated/
+  // world_model_match_accuracy_test (opponents >= 50 % lower there).
   EXPECT_LE(filt_pos.value(), 0.5 * raw_pos.value());
-  EXPECT_LE(enemy_filt.value(), 0.7 * enemy_raw.value());
+  EXPECT_LE(enemy_filt.value(), 0.65 * enemy_raw.value());
+  EXPECT_GT(enemy_reduction, reference.reduction_pct + 5);
   EXPECT_LE(filt_vel.value(), 0.5 * naive_vel.value());
   EXPECT_LT(filt_ori.value(), raw_ori.value());
   EXPECT_EQ(h.model().counters().tracks_created, 12u);
@@ -151,6 +220,7 @@ TEST(WorldModelAccuracy, RobotPositionAndVelocityRmsAtLeastHalfOfRawUnderRealist
 TEST(WorldModelAccuracy, PlannerDrivenRobotsPositionRmsAtLeastHalfOfRawForOurs) {
   SimHarness h({.robots_per_team = 6, .seed = 12});
   Rms raw_pos, filt_pos, enemy_raw, enemy_filt, filt_vel;
+  std::vector<EnemySample> enemy_samples;
   time::Timestamp t_cmd;
   const time::Timestamp start = h.now();
   auto drive = [&](SimHarness& harness) {
@@ -177,8 +247,13 @@ TEST(WorldModelAccuracy, PlannerDrivenRobotsPositionRmsAtLeastHalfOfRawForOurs) 
     }
   };
   h.run(8s, drive, [&](const sim::DetectionFrame& frame) {
-    if (time::to_seconds(frame.capture_time - start) < 1.0) return;  // robots converge onto their paths
+    const double t = time::to_seconds(frame.capture_time - start);
     const sim::WorldSnapshot& truth = h.truth(frame.capture_time);
+    for (const auto& d : frame.robots_yellow) {
+      const Vec2 true_position = find_robot(truth, TeamColor::kYellow, d.robot_id)->position;
+      enemy_samples.push_back({t, d.robot_id, Vec2(d.x, d.y), true_position});
+    }
+    if (t < 1.0) return;  // robots converge onto their paths
     const WorldState world = h.model().state_at_vision_time(frame.capture_time);
     for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
       const auto& detections = team == TeamColor::kBlue ? frame.robots_blue : frame.robots_yellow;
@@ -194,14 +269,22 @@ TEST(WorldModelAccuracy, PlannerDrivenRobotsPositionRmsAtLeastHalfOfRawForOurs) 
       }
     }
   });
+  const PolynomialFit reference = best_polynomial_fit(enemy_samples, 1.0);
+  const double enemy_reduction = 100 * (1 - enemy_filt.value() / enemy_raw.value());
   std::printf("[WorldModel] planner-driven robots (realistic, %zu samples): ours position RMS raw %.2f mm, filtered "
-              "%.2f mm (%.0f%% lower), velocity RMS %.3f m/s; enemies raw %.2f mm, filtered %.2f mm (%.0f%% lower)\n",
+              "%.2f mm (%.0f%% lower), velocity RMS %.3f m/s; enemies raw %.2f mm, filtered %.2f mm (%.0f%% lower; "
+              "best causal polynomial fit %.0f%%, degree %d, %.2f s window)\n",
               raw_pos.n, raw_pos.value() * 1e3, filt_pos.value() * 1e3, 100 * (1 - filt_pos.value() / raw_pos.value()),
-              filt_vel.value(), enemy_raw.value() * 1e3, enemy_filt.value() * 1e3,
-              100 * (1 - enemy_filt.value() / enemy_raw.value()));
+              filt_vel.value(), enemy_raw.value() * 1e3, enemy_filt.value() * 1e3, enemy_reduction,
+              reference.reduction_pct, reference.degree, reference.window);
   EXPECT_GT(raw_pos.n, 1000u);
   EXPECT_LE(filt_pos.value(), 0.5 * raw_pos.value());      // measured 56 % lower (seed 12)
-  EXPECT_LE(enemy_filt.value(), 0.7 * enemy_raw.value());  // measured 40 % (38-39 % seeds 4, 8, 24): guard
+  // Enemies: measured 43 % (41-42 % at seeds 3 and 7), guarded at 35 %. The best causal polynomial fit over any
+  // window (chosen with hindsight) reaches 37 %; robots saturate their acceleration when they fall behind
+  // their paths or touch each other, and even a fit told by the truth where the acceleration jumps gets
+  // 40 % (measured offline).
+  EXPECT_LE(enemy_filt.value(), 0.65 * enemy_raw.value());
+  EXPECT_GT(enemy_reduction, reference.reduction_pct + 2);
 }
 
 // The ball slides and rolls across the field, stops, and a robot kicks it.
