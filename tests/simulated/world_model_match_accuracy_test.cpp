@@ -3,7 +3,7 @@
 // model, through a scripted referee sequence (kickoff, normal play, STOP, their free kick, normal play).
 // At every camera frame each model's state at the frame's capture time is compared with the simulator's
 // ground truth at that instant, for its own robots (commands known) and for the opponents (no commands),
-// next to the raw detections' error. The world_model's own accuracy test drives robots along hard
+// next to the raw detections' error (velocities: next to finite differences of the raw detections). The world_model's own accuracy test drives robots along hard
 // continuous curves; this one measures the motion a match really has (sprints, stops, holding positions,
 // turning on the spot, pushing). Figures are printed.
 #include <gtest/gtest.h>
@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <vector>
@@ -71,9 +72,12 @@ struct ScriptedCommand {
   RefereeCommand command = RefereeCommand::kHalt;
 };
 
-/// Errors of one team's world model: its own robots and the opponents, raw detections vs filtered state.
+/// Errors of one team's world model: its own robots and the opponents, raw detections vs filtered state;
+/// velocities: filtered vs finite differences of consecutive raw detections of one robot.
 struct TeamErrors {
   Rms own_raw, own_filtered, enemy_raw, enemy_filtered;
+  Rms own_velocity_raw, own_velocity_filtered, enemy_velocity_raw, enemy_velocity_filtered;
+  std::map<std::pair<TeamColor, std::uint32_t>, std::pair<time::Timestamp, Vec2>> last_detection;
 };
 
 /// One team: its world model (a second one besides the harness' blue model) and its planner.
@@ -128,10 +132,20 @@ void add_errors(const sim::DetectionFrame& frame, const sim::WorldSnapshot& trut
       const wm::RobotState* s = find_state(states, d.robot_id);
       ASSERT_NE(r, nullptr);
       ASSERT_NE(s, nullptr);
-      // The world state is in the team frame: compare distances, which the flip keeps.
+      // The world state is in the team frame: back to the vision frame once.
       const Vec2 filtered = model.team_frame().to_vision_point(s->position);
-      (own ? errors.own_raw : errors.enemy_raw).add((Vec2(d.x, d.y) - r->position).norm());
+      const Vec2 detected(d.x, d.y);
+      (own ? errors.own_raw : errors.enemy_raw).add((detected - r->position).norm());
       (own ? errors.own_filtered : errors.enemy_filtered).add((filtered - r->position).norm());
+      auto& last = errors.last_detection[{team, d.robot_id}];
+      const double dt = time::to_seconds(frame.capture_time - last.first);
+      if (dt > 0.005 && dt < 0.05) {
+        const Vec2 difference = (detected - last.second) / dt;
+        const Vec2 velocity = model.team_frame().vector(s->velocity);
+        (own ? errors.own_velocity_raw : errors.enemy_velocity_raw).add((difference - r->velocity).norm());
+        (own ? errors.own_velocity_filtered : errors.enemy_velocity_filtered).add((velocity - r->velocity).norm());
+      }
+      last = {frame.capture_time, detected};
     }
   }
 }
@@ -223,10 +237,13 @@ TEST_P(WorldModelMatchAccuracy, BothTeamsOwnRobotsAndOpponentsAtLeastHalfOfRawIn
               robots, robots, static_cast<unsigned long long>(seed()), ball_travel);
   for (const auto& [name, e] : {std::pair{"blue", &blue_errors}, std::pair{"yellow", &yellow_errors}}) {
     std::printf("[WorldModel]   %s's model: own robots raw %.2f mm, filtered %.2f mm (%.0f%% lower, %zu samples); "
-                "opponents raw %.2f mm, filtered %.2f mm (%.0f%% lower)\n",
+                "opponents raw %.2f mm, filtered %.2f mm (%.0f%% lower); velocity RMS own %.3f m/s, opponents "
+                "%.3f m/s (raw finite differences %.3f / %.3f m/s)\n",
                 name, e->own_raw.value() * 1e3, e->own_filtered.value() * 1e3,
                 reduction(e->own_raw, e->own_filtered), e->own_raw.n, e->enemy_raw.value() * 1e3,
-                e->enemy_filtered.value() * 1e3, reduction(e->enemy_raw, e->enemy_filtered));
+                e->enemy_filtered.value() * 1e3, reduction(e->enemy_raw, e->enemy_filtered),
+                e->own_velocity_filtered.value(), e->enemy_velocity_filtered.value(), e->own_velocity_raw.value(),
+                e->enemy_velocity_raw.value());
   }
   Rms opponents_raw, opponents_filtered;
   for (const TeamErrors* e : {&blue_errors, &yellow_errors}) {
@@ -243,6 +260,8 @@ TEST_P(WorldModelMatchAccuracy, BothTeamsOwnRobotsAndOpponentsAtLeastHalfOfRawIn
     EXPECT_GT(e->own_raw.n, 2000u * robots);
     EXPECT_LE(e->own_filtered.value(), 0.5 * e->own_raw.value());
     EXPECT_LE(e->enemy_filtered.value(), 0.55 * e->enemy_raw.value());
+    EXPECT_LE(e->own_velocity_filtered.value(), 0.5 * e->own_velocity_raw.value());
+    EXPECT_LE(e->enemy_velocity_filtered.value(), 0.5 * e->enemy_velocity_raw.value());
   }
   EXPECT_LE(opponents_filtered.value(), 0.5 * opponents_raw.value());
 }
