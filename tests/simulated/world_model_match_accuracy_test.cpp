@@ -1,9 +1,10 @@
-// World-model accuracy in a MATCH: both teams run the real planner against the Bullet simulator in lockstep
-// (`realistic` vision: 2 mm robot noise, dropped detections, delays, occlusion), each with its own world
-// model, through a scripted referee sequence (kickoff, normal play, STOP, their free kick, normal play).
-// At every camera frame each model's state at the frame's capture time is compared with the simulator's
-// ground truth at that instant, for its own robots (commands known) and for the opponents (no commands),
-// next to the raw detections' error (velocities: next to finite differences of the raw detections). The world_model's own accuracy test drives robots along hard
+// World-model accuracy in a MATCH (planner::testing::PlannedMatch): both teams run the real planner against
+// the Bullet simulator in lockstep (`realistic` vision: 2 mm robot noise, dropped detections, delays,
+// occlusion), each with its own world model, through a scripted referee sequence (kickoff, normal play,
+// STOP, their free kick, normal play). At every camera frame each model's state at the frame's capture time
+// is compared with the simulator's ground truth at that instant, for its own robots (commands known) and
+// for the opponents (no commands), next to the raw detections' error (velocities: next to finite
+// differences of the raw detections). The world_model's own accuracy test drives robots along hard
 // continuous curves; this one measures the motion a match really has (sprints, stops, holding positions,
 // turning on the spot, pushing). Figures are printed.
 #include <gtest/gtest.h>
@@ -13,27 +14,19 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <optional>
 #include <ostream>
 #include <vector>
 
-#include "services/planner/core/planner.h"
-#include "services/world_model/core/sim_harness.h"
+#include "services/planner/testing/planned_match.h"
 #include "services/world_model/core/world_model.h"
 
 namespace ssl {
 namespace {
 
 using namespace std::chrono_literals;
-using planner::Planner;
-using planner::PlannerConfig;
-using planner::PlannerInputs;
-using planner::PlannerOutput;
-using planner::RefereeInput;
 using geom::Vec2;
 using wm::RefereeCommand;
 
-constexpr auto kPlannerPeriod = 10ms;
 constexpr std::uint64_t kDefaultSeed = 20261123;
 /// Fixed, so a run is reproducible; WORLD_MODEL_MATCH_SEED=n explores another one.
 std::uint64_t seed() {
@@ -67,10 +60,6 @@ struct Rms {
   double value() const { return n ? std::sqrt(sum / static_cast<double>(n)) : 0; }
 };
 
-struct ScriptedCommand {
-  double at = 0;  // s since the start
-  RefereeCommand command = RefereeCommand::kHalt;
-};
 
 /// Errors of one team's world model: its own robots and the opponents, raw detections vs filtered state;
 /// velocities: filtered vs finite differences of consecutive raw detections of one robot.
@@ -78,31 +67,6 @@ struct TeamErrors {
   Rms own_raw, own_filtered, enemy_raw, enemy_filtered;
   Rms own_velocity_raw, own_velocity_filtered, enemy_velocity_raw, enemy_velocity_filtered;
   std::map<std::pair<TeamColor, std::uint32_t>, std::pair<time::Timestamp, Vec2>> last_detection;
-};
-
-/// One team: its world model (a second one besides the harness' blue model) and its planner.
-struct TeamStack {
-  TeamColor color = TeamColor::kBlue;
-  std::optional<wm::WorldModel> own_model;  // yellow only: blue uses the harness' model
-  Planner planner;
-  PlannerOutput out;
-
-  TeamStack(TeamColor c, const sim::FieldGeometry& field) : color(c), planner(make_config(c, field)) {}
-
-  static PlannerConfig make_config(TeamColor c, const sim::FieldGeometry& f) {
-    PlannerConfig config;
-    config.team = c;
-    config.default_field = wm::FieldSize{.field_length = f.field_length,
-                                         .field_width = f.field_width,
-                                         .goal_width = f.goal_width,
-                                         .goal_depth = f.goal_depth,
-                                         .boundary_width = f.boundary_width,
-                                         .penalty_area_depth = f.penalty_area_depth,
-                                         .penalty_area_width = f.penalty_area_width,
-                                         .center_circle_radius = f.center_circle_radius,
-                                         .goal_center_to_penalty_mark = f.goal_center_to_penalty_mark};
-    return config;
-  }
 };
 
 const sim::RobotState* find_robot(const sim::WorldSnapshot& world, TeamColor team, std::uint32_t id) {
@@ -157,81 +121,23 @@ class WorldModelMatchAccuracy : public ::testing::TestWithParam<Division> {};
 TEST_P(WorldModelMatchAccuracy, BothTeamsOwnRobotsAndOpponentsAtLeastHalfOfRawInAPlannedMatch) {
   const Division division = GetParam();
   const std::uint32_t robots = division.robots;
-  const sim::FieldGeometry field = division.field();
-  wm::testing::SimHarness h({.robots_per_team = robots, .seed = seed(), .field = field});
-  wm::WorldModelConfig yellow_config;
-  yellow_config.team = TeamColor::kYellow;
-  TeamStack blue(TeamColor::kBlue, field);
-  TeamStack yellow(TeamColor::kYellow, field);
-  yellow.own_model.emplace(yellow_config);
-  yellow.own_model->on_geometry(wm::testing::from_sim(h.sim().geometry()));
-  auto model_of = [&](TeamStack& t) -> wm::WorldModel& { return t.own_model ? *t.own_model : h.model(); };
-
-  const std::vector<ScriptedCommand> script = {
-      {0.0, RefereeCommand::kHalt},          {0.3, RefereeCommand::kStop},
-      {2.5, RefereeCommand::kPrepareKickoffBlue}, {5.0, RefereeCommand::kNormalStart},
-      {15.0, RefereeCommand::kStop},         {18.0, RefereeCommand::kDirectFreeYellow},
+  planner::testing::PlannedMatch match({.field = division.field(), .robots = robots, .seed = seed()});
+  match.script({
+      {0.0, RefereeCommand::kHalt},
+      {0.3, RefereeCommand::kStop},
+      {2.5, RefereeCommand::kPrepareKickoffBlue},
+      {5.0, RefereeCommand::kNormalStart},
+      {15.0, RefereeCommand::kStop},
+      {18.0, RefereeCommand::kDirectFreeYellow},
       {28.0, RefereeCommand::kStop},
-  };
-  RefereeInput referee;
-  referee.info.blue_team_on_positive_half = false;
-  std::size_t next_command = 0;
-  const time::Timestamp start = h.now();
-  time::Timestamp next_tick = start;
-  TeamErrors blue_errors, yellow_errors;
-
-  auto plan = [&](wm::testing::SimHarness& harness) {
-    const time::Timestamp now = harness.now();
-    if (now < next_tick) return;
-    next_tick = now + kPlannerPeriod;
-    const double t = time::to_seconds(now - start);
-    while (next_command < script.size() && script[next_command].at <= t + 1e-9) {
-      referee.info.command = script[next_command++].command;
-      ++referee.info.command_counter;
-    }
-    for (TeamStack* team : {&blue, &yellow}) {
-      wm::WorldModel& model = model_of(*team);
-      model.on_referee(referee.info, now);
-      for (const sim::RobotFeedback& f : harness.sim().feedback(team->color)) {
-        model.on_feedback({.id = f.id, .ball_in_dribbler = f.dribbler_ball_contact}, now);
-      }
-      const PlannerInputs inputs{.world = model.state(now), .referee = referee, .field = model.field().size()};
-      team->planner.step(inputs, now, team->out);
-      std::vector<sim::RobotCommandFor> commands;
-      for (std::uint32_t id = 0; id < robots; ++id) {
-        commands.push_back({.id = id, .command = {}});
-        commands.back().command.move = sim::RobotCommand::Move::kLocalVelocity;
-      }
-      for (const planner::RobotCommand& c : team->out.commands) {
-        if (c.id >= robots) continue;
-        sim::RobotCommand& s = commands[c.id].command;
-        s.velocity = sim::Vec3(c.forward, c.left, c.angular);
-        if (c.kick != planner::KickType::kNone) s.kick_speed = c.kick_speed;
-        if (c.kick == planner::KickType::kChip) s.kick_angle = c.chip_angle;
-        s.dribbler_rpm = c.dribbler_rpm;
-      }
-      // The harness tells its (blue) model; yellow's model is told here.
-      harness.command(team->color, commands, team->color == TeamColor::kBlue);
-      if (team->own_model) {
-        std::vector<wm::RobotCommand> sent;
-        for (const auto& c : commands) {
-          sent.push_back({c.id, c.command.velocity.x(), c.command.velocity.y(), c.command.velocity.z()});
-        }
-        team->own_model->on_commands(sent, now);
-      }
-    }
-  };
-  double ball_travel = 0;
-  Vec2 last_ball = h.sim().snapshot().ball.position.head<2>();
-  h.run(30s, plan, [&](const sim::DetectionFrame& frame) {
-    yellow.own_model->on_detection(wm::testing::from_sim(frame), h.now());
-    const sim::WorldSnapshot& truth = h.truth(frame.capture_time);
-    ball_travel += (truth.ball.position.head<2>() - last_ball).norm();
-    last_ball = truth.ball.position.head<2>();
-    if (time::to_seconds(frame.capture_time - start) < 1.0) return;  // tracks lock on
-    add_errors(frame, truth, h.model(), TeamColor::kBlue, blue_errors);
-    add_errors(frame, truth, *yellow.own_model, TeamColor::kYellow, yellow_errors);
   });
+  TeamErrors blue_errors, yellow_errors;
+  match.run(30s, [&](const sim::DetectionFrame& frame, const sim::WorldSnapshot& truth) {
+    if (time::to_seconds(frame.capture_time - match.start()) < 1.0) return;  // tracks lock on
+    add_errors(frame, truth, match.model(TeamColor::kBlue), TeamColor::kBlue, blue_errors);
+    add_errors(frame, truth, match.model(TeamColor::kYellow), TeamColor::kYellow, yellow_errors);
+  });
+  const double ball_travel = match.ball_travel();
 
   std::printf("[WorldModel] planned match, %s, %u v %u, 30 s, seed %llu, ball travelled %.1f m\n", division.name,
               robots, robots, static_cast<unsigned long long>(seed()), ball_travel);

@@ -71,6 +71,7 @@ class SimHarness {
 
   sim::Simulator& sim() { return sim_; }
   WorldModel& model() { return model_; }
+  const WorldModel& model() const { return model_; }
   time::Timestamp now() const { return sim_.snapshot().time; }
 
   /// The true world at a capture instant (the latest snapshot at or before t).

@@ -1,0 +1,82 @@
+// PlannedMatch: a whole simulated match in one process and in LOCKSTEP on the simulated clock: the Bullet
+// simulator (realistic vision), and for each team a WorldModel fed with every camera frame, its dribbler
+// feedback and its own commands, and a Planner ticking every 10 ms on its world model's state, with a
+// scripted referee both teams see. No threads, no sleeps, no DDS: the same seed gives the same match.
+// Used by tests that check the world model against the ground truth in a realistic game and by the
+// full-match benchmark (real-time factor).
+//
+//   testing::PlannedMatch match({.field = sim::FieldGeometry::division_b(), .robots = 6, .seed = 7});
+//   match.script({{0.0, wm::RefereeCommand::kStop}, {2.0, wm::RefereeCommand::kForceStart}});
+//   match.run(30s, [&](const sim::DetectionFrame& frame, const sim::WorldSnapshot& truth) { ... });
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "libs/common/team.h"
+#include "services/planner/core/planner.h"
+#include "services/simulator/core/simulator.h"
+#include "services/world_model/core/sim_harness.h"
+#include "services/world_model/core/world_model.h"
+
+namespace ssl::planner::testing {
+
+struct PlannedMatchOptions {
+  sim::FieldGeometry field = sim::FieldGeometry::division_b();
+  std::uint32_t robots = 6;  // per team
+  std::uint64_t seed = 1;
+  bool blue_on_positive_half = false;
+};
+
+/// A referee command issued `at` seconds after the start.
+struct ScriptedCommand {
+  double at = 0;
+  wm::RefereeCommand command = wm::RefereeCommand::kHalt;
+};
+
+class PlannedMatch {
+ public:
+  static constexpr auto kPlannerPeriod = std::chrono::milliseconds(10);
+
+  explicit PlannedMatch(const PlannedMatchOptions& options);
+
+  /// The referee commands of the match (both teams see them); HALT until the first one.
+  void script(std::vector<ScriptedCommand> commands) { script_ = std::move(commands); }
+
+  /// Plays `duration` of simulated time; after each camera frame was given to both world models calls
+  /// `after_frame(frame, truth)` with the true world at the frame's capture instant.
+  void run(time::Duration duration,
+           const std::function<void(const sim::DetectionFrame&, const sim::WorldSnapshot&)>& after_frame);
+
+  /// The world model of `team` (its team frame: our goal at negative x).
+  const wm::WorldModel& model(TeamColor team) const;
+  const sim::Simulator& sim() { return harness_.sim(); }
+  time::Timestamp start() const { return start_; }
+  /// Distance the ball travelled on the field so far (m, ground truth at the camera frames).
+  double ball_travel() const { return ball_travel_; }
+
+ private:
+  struct Team {
+    TeamColor color;
+    Planner planner;
+    PlannerOutput out;
+  };
+
+  void tick(wm::testing::SimHarness& harness);
+  wm::WorldModel& model_of(TeamColor team);
+
+  wm::testing::SimHarness harness_;  // holds the simulator and BLUE's world model
+  wm::WorldModel yellow_model_;
+  std::vector<Team> teams_;
+  std::uint32_t robots_;
+  RefereeInput referee_;
+  std::vector<ScriptedCommand> script_;
+  std::size_t next_command_ = 0;
+  time::Timestamp start_;
+  time::Timestamp next_tick_;
+  double ball_travel_ = 0;
+};
+
+}  // namespace ssl::planner::testing
