@@ -110,18 +110,6 @@ std::vector<Case> all_cases() {
   return cases;
 }
 
-wm::FieldSize field_size(const sim::FieldGeometry& f) {
-  return {.field_length = f.field_length,
-          .field_width = f.field_width,
-          .goal_width = f.goal_width,
-          .goal_depth = f.goal_depth,
-          .boundary_width = f.boundary_width,
-          .penalty_area_depth = f.penalty_area_depth,
-          .penalty_area_width = f.penalty_area_width,
-          .center_circle_radius = f.center_circle_radius,
-          .goal_center_to_penalty_mark = f.goal_center_to_penalty_mark};
-}
-
 // ---- the lockstep match -----------------------------------------------------------------------------------
 
 /// One robot of the ground truth, in OUR team frame.
@@ -165,7 +153,7 @@ class LockstepMatch {
       t.model->on_geometry(wm::testing::from_sim(sim_.geometry()));
       PlannerConfig planner_config;
       planner_config.team = team;
-      planner_config.default_field = field_size(field_);
+      planner_config.default_field = wm::testing::field_size(field_);
       t.planner.emplace(planner_config);
     }
     referee_.info.blue_team_on_positive_half = side.blue_on_positive_half;
@@ -420,7 +408,7 @@ class Eventually {
 
 /// Robot-centre distance to a team's OPPONENT defense area (our frame: theirs at +x, ours at -x).
 double distance_to_opponent_defense_area(const sim::FieldGeometry& f, const TrueRobot& r) {
-  const wm::Field field(field_size(f));
+  const wm::Field field(wm::testing::field_size(f));
   return testing::distance_to_their_defense_area(field, r.ours ? r.position : Vec2(-r.position));
 }
 

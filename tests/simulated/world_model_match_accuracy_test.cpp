@@ -26,6 +26,7 @@ namespace {
 using namespace std::chrono_literals;
 using geom::Vec2;
 using wm::RefereeCommand;
+using wm::testing::Rms;
 
 constexpr std::uint64_t kDefaultSeed = 20261123;
 /// Fixed, so a run is reproducible; WORLD_MODEL_MATCH_SEED=n explores another one.
@@ -45,20 +46,6 @@ struct Division {
 };
 
 void PrintTo(const Division& d, std::ostream* os) { *os << d.name; }
-
-struct Rms {
-  double sum = 0;
-  std::size_t n = 0;
-  void add(double e) {
-    sum += e * e;
-    ++n;
-  }
-  void add(const Rms& other) {
-    sum += other.sum;
-    n += other.n;
-  }
-  double value() const { return n ? std::sqrt(sum / static_cast<double>(n)) : 0; }
-};
 
 
 /// Errors of one team's world model: its own robots and the opponents, raw detections vs filtered state;

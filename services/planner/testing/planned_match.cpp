@@ -3,18 +3,10 @@
 namespace ssl::planner::testing {
 namespace {
 
-PlannerConfig planner_config(TeamColor team, const sim::FieldGeometry& f) {
+PlannerConfig planner_config(TeamColor team, const sim::FieldGeometry& field) {
   PlannerConfig config;
   config.team = team;
-  config.default_field = wm::FieldSize{.field_length = f.field_length,
-                                       .field_width = f.field_width,
-                                       .goal_width = f.goal_width,
-                                       .goal_depth = f.goal_depth,
-                                       .boundary_width = f.boundary_width,
-                                       .penalty_area_depth = f.penalty_area_depth,
-                                       .penalty_area_width = f.penalty_area_width,
-                                       .center_circle_radius = f.center_circle_radius,
-                                       .goal_center_to_penalty_mark = f.goal_center_to_penalty_mark};
+  config.default_field = wm::testing::field_size(field);
   return config;
 }
 

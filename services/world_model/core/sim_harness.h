@@ -7,6 +7,7 @@
 #pragma once
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <vector>
@@ -37,19 +38,39 @@ inline DetectionFrame from_sim(const sim::DetectionFrame& in) {
   return out;
 }
 
+/// The simulator's field as the world model's FieldSize (ball and robot radius left at their defaults).
+inline FieldSize field_size(const sim::FieldGeometry& f) {
+  return {.field_length = f.field_length, .field_width = f.field_width, .goal_width = f.goal_width,
+          .goal_depth = f.goal_depth, .boundary_width = f.boundary_width,
+          .penalty_area_depth = f.penalty_area_depth, .penalty_area_width = f.penalty_area_width,
+          .center_circle_radius = f.center_circle_radius,
+          .goal_center_to_penalty_mark = f.goal_center_to_penalty_mark};
+}
+
 inline Geometry from_sim(const sim::GeometryData& in) {
   Geometry out;
-  const sim::FieldGeometry& f = in.field;
-  out.field = {.field_length = f.field_length, .field_width = f.field_width, .goal_width = f.goal_width,
-               .goal_depth = f.goal_depth, .boundary_width = f.boundary_width,
-               .penalty_area_depth = f.penalty_area_depth, .penalty_area_width = f.penalty_area_width,
-               .center_circle_radius = f.center_circle_radius,
-               .goal_center_to_penalty_mark = f.goal_center_to_penalty_mark, .ball_radius = in.ball_radius,
-               .max_robot_radius = in.max_robot_radius};
+  out.field = field_size(in.field);
+  out.field.ball_radius = in.ball_radius;
+  out.field.max_robot_radius = in.max_robot_radius;
   for (const auto& c : in.calibrations) out.cameras.push_back({c.camera_id, c.derived_world});
   out.ball_model = BallModel{in.ball_models.acc_slide, in.ball_models.acc_roll, in.ball_models.k_switch};
   return out;
 }
+
+/// Root mean square of the values added (errors, in their unit).
+struct Rms {
+  double sum = 0;
+  std::size_t n = 0;
+  void add(double e) {
+    sum += e * e;
+    ++n;
+  }
+  void add(const Rms& other) {
+    sum += other.sum;
+    n += other.n;
+  }
+  double value() const { return n ? std::sqrt(sum / static_cast<double>(n)) : 0; }
+};
 
 struct HarnessOptions {
   std::uint32_t robots_per_team = 0;

@@ -19,17 +19,8 @@ namespace {
 
 using namespace std::chrono_literals;
 using testing::HarnessOptions;
+using testing::Rms;
 using testing::SimHarness;
-
-struct Rms {
-  double sum = 0;
-  std::size_t n = 0;
-  void add(double e) {
-    sum += e * e;
-    ++n;
-  }
-  double value() const { return n ? std::sqrt(sum / static_cast<double>(n)) : 0; }
-};
 
 const sim::RobotState* find_robot(const sim::WorldSnapshot& world, TeamColor team, std::uint32_t id) {
   for (const auto& r : world.robots) {
