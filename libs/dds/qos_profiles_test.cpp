@@ -89,6 +89,15 @@ TEST_F(QosProfilesTest, RefereeEventsKeepSixtyFourReliably) {
   EXPECT_EQ(writer.history().depth, 64);
 }
 
+TEST_F(QosProfilesTest, RefereeOperatorCommandsAreReliableAndNotReplayedToLateJoiners) {
+  const auto writer = writer_qos("referee.command.writer");
+  const auto reader = reader_qos("referee.command.reader");
+  EXPECT_EQ(writer.reliability().kind, fdds::RELIABLE_RELIABILITY_QOS);
+  EXPECT_EQ(reader.reliability().kind, fdds::RELIABLE_RELIABILITY_QOS);
+  EXPECT_EQ(writer.durability().kind, fdds::VOLATILE_DURABILITY_QOS);
+  EXPECT_EQ(writer.history().depth, 16);
+}
+
 TEST_F(QosProfilesTest, RobotCommandsHaveDeadlineAndLifespanOfOneHundredMilliseconds) {
   const auto writer = writer_qos("robot.commands.writer");
   EXPECT_EQ(writer.deadline().period, eprosima::fastrtps::Duration_t(0, 100'000'000));

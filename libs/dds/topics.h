@@ -51,6 +51,8 @@ inline constexpr TopicSpec<idl::referee::RefereeState, idl::referee::RefereeStat
     "referee.state", TopicScope::kShared, "the whole referee state"};
 inline constexpr TopicSpec<idl::referee::RefereeEvent, idl::referee::RefereeEventPubSubType> kRefereeEvent{
     "referee.event", TopicScope::kShared, "game events as they happen"};
+inline constexpr TopicSpec<idl::referee::RefereeOperatorCommand, idl::referee::RefereeOperatorCommandPubSubType>
+    kRefereeCommand{"referee.command", TopicScope::kShared, "operator commands for the built-in referee"};
 inline constexpr TopicSpec<idl::world::WorldState, idl::world::WorldStatePubSubType> kWorldState{
     "world.state", TopicScope::kTeam, "filtered ball and robots, team frame"};
 inline constexpr TopicSpec<idl::robot::RobotCommands, idl::robot::RobotCommandsPubSubType> kRobotCommands{
@@ -68,7 +70,7 @@ inline constexpr TopicSpec<idl::system::Health, idl::system::HealthPubSubType> k
 
 /// All topics, for tools that work on any topic by name.
 inline constexpr auto kAll = std::make_tuple(kVisionDetection, kVisionGeometry, kRefereeState, kRefereeEvent,
-                                             kWorldState, kRobotCommands, kRobotFeedback, kPlannerDebug,
+                                             kRefereeCommand, kWorldState, kRobotCommands, kRobotFeedback, kPlannerDebug,
                                              kSystemParams, kSystemEstop, kSystemHealth);
 
 }  // namespace topics
