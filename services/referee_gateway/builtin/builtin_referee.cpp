@@ -1,0 +1,814 @@
+// The built-in referee: the state machine (apply, enter_stage), the input cleaning and the rules. See the
+// header for the contract. Layout: helpers, construction and inputs, the state machine, the rules.
+#include "services/referee_gateway/builtin/builtin_referee.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace ssl::referee {
+namespace {
+
+using geom::Vec2;
+using time::duration_from_seconds;
+using time::Timestamp;
+
+Team to_team(TeamColor color) { return color == TeamColor::kYellow ? Team::kYellow : Team::kBlue; }
+
+Command kickoff(TeamColor team) {
+  return team == TeamColor::kYellow ? Command::kPrepareKickoffYellow : Command::kPrepareKickoffBlue;
+}
+Command penalty(TeamColor team) {
+  return team == TeamColor::kYellow ? Command::kPreparePenaltyYellow : Command::kPreparePenaltyBlue;
+}
+Command direct_free(TeamColor team) {
+  return team == TeamColor::kYellow ? Command::kDirectFreeYellow : Command::kDirectFreeBlue;
+}
+Command ball_placement(TeamColor team) {
+  return team == TeamColor::kYellow ? Command::kBallPlacementYellow : Command::kBallPlacementBlue;
+}
+
+/// The team a command is for (kicker, placer, team in timeout); nullopt for team-less commands.
+std::optional<TeamColor> team_of(Command command) {
+  switch (command) {
+    case Command::kPrepareKickoffYellow:
+    case Command::kPreparePenaltyYellow:
+    case Command::kDirectFreeYellow:
+    case Command::kIndirectFreeYellow:
+    case Command::kTimeoutYellow:
+    case Command::kGoalYellow:
+    case Command::kBallPlacementYellow:
+      return TeamColor::kYellow;
+    case Command::kPrepareKickoffBlue:
+    case Command::kPreparePenaltyBlue:
+    case Command::kDirectFreeBlue:
+    case Command::kIndirectFreeBlue:
+    case Command::kTimeoutBlue:
+    case Command::kGoalBlue:
+    case Command::kBallPlacementBlue:
+      return TeamColor::kBlue;
+    case Command::kHalt:
+    case Command::kStop:
+    case Command::kNormalStart:
+    case Command::kForceStart:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+bool is_direct_free(Command command) {
+  return command == Command::kDirectFreeYellow || command == Command::kDirectFreeBlue;
+}
+
+bool is_finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+
+double sign_of(double value) { return value < 0 ? -1.0 : 1.0; }
+
+double distance_to_segment(const Vec2& point, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (point - (a + t * ab)).norm();
+}
+
+/// An axis-aligned defense area and the two ways a robot can be in it.
+struct Area {
+  Vec2 min;
+  Vec2 max;
+
+  /// Distance from `p` to the area's nearest edge when inside (>= 0), negative outside.
+  double depth(const Vec2& p) const {
+    if (p.x() < min.x() || p.x() > max.x() || p.y() < min.y() || p.y() > max.y()) {
+      const double dx = std::max({min.x() - p.x(), 0.0, p.x() - max.x()});
+      const double dy = std::max({min.y() - p.y(), 0.0, p.y() - max.y()});
+      return -std::hypot(dx, dy);
+    }
+    return std::min({p.x() - min.x(), max.x() - p.x(), p.y() - min.y(), max.y() - p.y()});
+  }
+  bool entirely_contains(const Vec2& robot, double robot_radius) const {
+    return depth(robot) >= robot_radius;
+  }
+  bool partly_contains(const Vec2& robot, double robot_radius) const { return depth(robot) > -robot_radius; }
+};
+
+}  // namespace
+
+// -------------------------------------------------------------------------------------------------------
+// Field geometry
+
+FieldGeometry FieldGeometry::division_a() {
+  return {.field_length = 12.0,
+          .field_width = 9.0,
+          .goal_width = 1.8,
+          .goal_depth = 0.18,
+          .defense_area_depth = 1.8,
+          .defense_area_width = 3.6,
+          .center_circle_radius = 0.5,
+          .penalty_mark_distance = 8.0};
+}
+
+FieldGeometry FieldGeometry::division_b() {
+  return {.field_length = 9.0,
+          .field_width = 6.0,
+          .goal_width = 1.0,
+          .goal_depth = 0.18,
+          .defense_area_depth = 1.0,
+          .defense_area_width = 2.0,
+          .center_circle_radius = 0.5,
+          .penalty_mark_distance = 6.0};
+}
+
+Status check_field_geometry(const FieldGeometry& field) {
+  const std::pair<const char*, double> lengths[] = {
+      {"field_length", field.field_length},
+      {"field_width", field.field_width},
+      {"goal_width", field.goal_width},
+      {"goal_depth", field.goal_depth},
+      {"defense_area_depth", field.defense_area_depth},
+      {"defense_area_width", field.defense_area_width},
+      {"center_circle_radius", field.center_circle_radius},
+      {"penalty_mark_distance", field.penalty_mark_distance},
+      {"robot_radius", field.robot_radius},
+      {"ball_radius", field.ball_radius},
+  };
+  for (const auto& [name, value] : lengths) {
+    if (!std::isfinite(value) || value <= 0) {
+      return Error{std::string("field geometry: ") + name + " must be a positive number of metres"};
+    }
+  }
+  if (field.goal_width >= field.field_width || field.defense_area_width >= field.field_width ||
+      field.defense_area_depth >= 0.5 * field.field_length) {
+    return Error{"field geometry: the goal or defense area does not fit in the field"};
+  }
+  return Status::success();
+}
+
+// -------------------------------------------------------------------------------------------------------
+// Construction and inputs
+
+BuiltinReferee::BuiltinReferee(RefereeProfile profile, FieldGeometry field, MatchSetup match)
+    : profile_(std::move(profile)), field_(field) {
+  state_.source = RefereeSource::kBuiltin;
+  state_.source_identifier = "builtin:" + profile_.name;
+  state_.stage = Stage::kNormalFirstHalfPre;
+  state_.command = Command::kHalt;
+  state_.blue_team_on_positive_half = match.blue_on_positive_half;
+  for (auto [info, setup] :
+       {std::pair{&state_.yellow, &match.yellow}, std::pair{&state_.blue, &match.blue}}) {
+    info->name = setup->name;
+    info->goalkeeper = setup->goalkeeper;
+    info->can_place_ball = true;
+    info->max_allowed_bots = match.max_allowed_bots;
+    info->timeouts = kTimeoutsPerTeam;
+    info->timeout_time_left = duration_from_seconds(kTimeoutBudget);
+  }
+  state_.next_command = kickoff(profile_.game.kickoff_team);
+  automatic_next_ = profile_.game.auto_continue;
+}
+
+void BuiltinReferee::step(const Observation& observation, Timestamp now) {
+  if (last_now_ && now < *last_now_) {
+    ++counters_.time_went_backwards;
+    return;
+  }
+  begin(now);
+  ++counters_.observations;
+  const CleanObservation seen = clean(observation, now);
+  update_last_touch(seen);
+  track_kick(seen);
+
+  const bool timed_stage = state_.stage == Stage::kNormalFirstHalf ||
+                           state_.stage == Stage::kNormalHalfTime || state_.stage == Stage::kNormalSecondHalf;
+  if (timed_stage && state_.stage_time_left && *state_.stage_time_left <= time::Duration::zero()) {
+    const Stage following = state_.stage == Stage::kNormalFirstHalf  ? Stage::kNormalHalfTime
+                            : state_.stage == Stage::kNormalHalfTime ? Stage::kNormalSecondHalfPre
+                                                                     : Stage::kPostGame;
+    enter_stage(following, now);
+    return;
+  }
+
+  std::optional<Transition> decision;
+  switch (phase_) {
+    case Phase::kRunning:
+      decision = judge_running(seen, now);
+      break;
+    case Phase::kPlacing:
+      judge_keep_out(seen, now);
+      decision = judge_placement(seen, now);
+      break;
+    case Phase::kStopped:
+    case Phase::kPreparing:
+    case Phase::kKickPending:
+      judge_keep_out(seen, now);
+      decision = automatic_continuation(now);
+      break;
+    case Phase::kHalted:
+    case Phase::kTimeout:
+      break;
+  }
+  if (decision) apply(*decision, now);
+}
+
+Status BuiltinReferee::command(Command command, Timestamp now, std::optional<Vec2> designated_position) {
+  const auto refuse = [this](std::string message) -> Status {
+    ++counters_.rejected_commands;
+    return Error{std::move(message)};
+  };
+  if (static_cast<int>(command) >= kCommandCount) return refuse("not a referee command");
+  if (command == Command::kGoalYellow || command == Command::kGoalBlue ||
+      command == Command::kIndirectFreeYellow || command == Command::kIndirectFreeBlue) {
+    return refuse(std::string(to_string(command)) + " is deprecated; the built-in referee does not issue it");
+  }
+  const bool placement = command == Command::kBallPlacementYellow || command == Command::kBallPlacementBlue;
+  if (placement && (!designated_position || !is_finite(*designated_position))) {
+    return refuse(std::string(to_string(command)) + " needs a finite designated position (m)");
+  }
+  if (last_now_ && now < *last_now_) {
+    ++counters_.time_went_backwards;
+    now = *last_now_;
+  }
+  begin(now);
+  apply(standard_transition(command, placement ? designated_position : std::nullopt,
+                            "operator: " + std::string(to_string(command))),
+        now);
+  return Status::success();
+}
+
+void BuiltinReferee::set_blue_on_positive_half(bool blue_on_positive_half) {
+  state_.blue_team_on_positive_half = blue_on_positive_half;
+}
+
+Status BuiltinReferee::next_stage(Timestamp now) {
+  Stage following = Stage::kPostGame;
+  switch (state_.stage) {
+    case Stage::kNormalFirstHalfPre:
+      following = Stage::kNormalFirstHalf;
+      break;
+    case Stage::kNormalFirstHalf:
+      following = Stage::kNormalHalfTime;
+      break;
+    case Stage::kNormalHalfTime:
+      following = Stage::kNormalSecondHalfPre;
+      break;
+    case Stage::kNormalSecondHalfPre:
+      following = Stage::kNormalSecondHalf;
+      break;
+    case Stage::kNormalSecondHalf:
+      following = Stage::kPostGame;
+      break;
+    default:
+      return Error{"no stage follows " + std::string(to_string(state_.stage))};
+  }
+  if (last_now_ && now < *last_now_) {
+    ++counters_.time_went_backwards;
+    now = *last_now_;
+  }
+  begin(now);
+  enter_stage(following, now);
+  return Status::success();
+}
+
+void BuiltinReferee::begin(Timestamp now) {
+  if (!last_now_) {
+    if (state_.command_counter == 0) state_.command_referee = now;
+    command_since_ = now;
+  } else {
+    const time::Duration elapsed = now - *last_now_;
+    const Command command = state_.command;
+    const bool clock_runs =
+        command == Command::kNormalStart || command == Command::kForceStart || is_direct_free(command);
+    const bool in_half = state_.stage == Stage::kNormalFirstHalf || state_.stage == Stage::kNormalSecondHalf;
+    if (state_.stage_time_left && ((in_half && clock_runs) || state_.stage == Stage::kNormalHalfTime)) {
+      *state_.stage_time_left -= elapsed;
+    }
+    if (command == Command::kTimeoutYellow) state_.yellow.timeout_time_left -= elapsed;
+    if (command == Command::kTimeoutBlue) state_.blue.timeout_time_left -= elapsed;
+  }
+  if (phase_ == Phase::kPlacing) {
+    state_.current_action_time_remaining =
+        duration_from_seconds(profile_.game.placement_timeout) - (now - command_since_);
+  }
+  last_now_ = now;
+  state_.packet_referee = now;
+}
+
+BuiltinReferee::CleanObservation BuiltinReferee::clean(const Observation& observation, Timestamp now) {
+  CleanObservation seen;
+  bool invalid_ball = false;
+  if (!observation.ball_position) {
+    ++counters_.missing_ball;
+  } else if (is_finite(*observation.ball_position)) {
+    seen.ball = observation.ball_position;
+  } else {
+    invalid_ball = true;
+  }
+  if (observation.ball_velocity && !is_finite(*observation.ball_velocity)) invalid_ball = true;
+  if (invalid_ball) ++counters_.invalid_ball;
+
+  if (seen.ball) {
+    if (observation.ball_velocity && is_finite(*observation.ball_velocity)) {
+      seen.ball_speed = observation.ball_velocity->norm();
+    } else if (last_ball_ && last_ball_time_ && now > *last_ball_time_) {
+      seen.ball_speed = (*seen.ball - *last_ball_).norm() / time::to_seconds(now - *last_ball_time_);
+    }
+    last_ball_ = seen.ball;
+    last_ball_time_ = now;
+  }
+
+  std::set<std::pair<TeamColor, std::uint32_t>> present;
+  for (const ObservedRobot& robot : observation.robots) {
+    if (!is_finite(robot.position)) {
+      ++counters_.invalid_robot;
+    } else if (robot.id > kMaxRobotId) {
+      ++counters_.unknown_robot_id;
+    } else if (!present.emplace(robot.team, robot.id).second) {
+      ++counters_.duplicate_robot;
+    } else {
+      seen.robots.push_back(robot);
+    }
+  }
+  return seen;
+}
+
+void BuiltinReferee::update_last_touch(const CleanObservation& seen) {
+  if (!seen.ball) return;
+  const double reach = field_.robot_radius + field_.ball_radius + kTouchMargin;
+  const ObservedRobot* nearest = nullptr;
+  double nearest_distance = reach;
+  for (const ObservedRobot& robot : seen.robots) {
+    const double distance = (robot.position - *seen.ball).norm();
+    if (distance <= nearest_distance) {
+      nearest_distance = distance;
+      nearest = &robot;
+    }
+  }
+  if (nearest != nullptr) last_touch_ = Touch{nearest->team, nearest->id};
+}
+
+void BuiltinReferee::track_kick(const CleanObservation& seen) {
+  if (phase_ != Phase::kKickPending || !seen.ball) return;
+  if (!kick_reference_ball_) {
+    kick_reference_ball_ = seen.ball;
+  } else if ((*seen.ball - *kick_reference_ball_).norm() >= kInPlayDistance) {
+    start_running();
+  }
+}
+
+// -------------------------------------------------------------------------------------------------------
+// The state machine
+
+BuiltinReferee::Transition BuiltinReferee::standard_transition(Command command,
+                                                               std::optional<Vec2> designated_position,
+                                                               std::string reason) const {
+  Transition transition{.command = command, .reason = std::move(reason)};
+  switch (command) {
+    case Command::kHalt:
+    case Command::kStop:
+    case Command::kTimeoutYellow:
+    case Command::kTimeoutBlue:
+      // A pause keeps what was pending, and whether it continues by itself once STOP is back.
+      transition.next_command = state_.next_command;
+      transition.next_is_automatic = automatic_next_;
+      break;
+    case Command::kPrepareKickoffYellow:
+    case Command::kPrepareKickoffBlue:
+    case Command::kPreparePenaltyYellow:
+    case Command::kPreparePenaltyBlue:
+      transition.next_command = Command::kNormalStart;
+      break;
+    case Command::kBallPlacementYellow:
+    case Command::kBallPlacementBlue:
+      transition.designated_position = designated_position;
+      transition.next_command = state_.next_command.value_or(direct_free(*team_of(command)));
+      transition.placement_attempt = 1;
+      break;
+    default:
+      break;
+  }
+  return transition;
+}
+
+void BuiltinReferee::apply(const Transition& transition, Timestamp now) {
+  const Phase previous = phase_;
+  const Command command = transition.command;
+  state_.command = command;
+  ++state_.command_counter;
+  state_.command_referee = now;
+  state_.next_command = transition.next_command;
+  state_.designated_position = transition.designated_position;
+  state_.status_message = transition.reason;
+  automatic_next_ = transition.next_is_automatic;
+  placement_attempt_ = transition.placement_attempt;
+  command_since_ = now;
+  keep_out_since_.clear();
+  placement_ok_since_.reset();
+  kick_reference_ball_ = last_ball_;
+
+  switch (command) {
+    case Command::kHalt:
+      phase_ = Phase::kHalted;
+      break;
+    case Command::kStop:
+    case Command::kGoalYellow:
+    case Command::kGoalBlue:
+      phase_ = Phase::kStopped;
+      break;
+    case Command::kNormalStart:
+      phase_ = previous == Phase::kPreparing ? Phase::kKickPending : Phase::kRunning;
+      break;
+    case Command::kForceStart:
+      phase_ = Phase::kRunning;
+      break;
+    case Command::kPrepareKickoffYellow:
+    case Command::kPrepareKickoffBlue:
+    case Command::kPreparePenaltyYellow:
+    case Command::kPreparePenaltyBlue:
+      phase_ = Phase::kPreparing;
+      break;
+    case Command::kDirectFreeYellow:
+    case Command::kDirectFreeBlue:
+    case Command::kIndirectFreeYellow:
+    case Command::kIndirectFreeBlue:
+      phase_ = Phase::kKickPending;
+      break;
+    case Command::kTimeoutYellow:
+    case Command::kTimeoutBlue:
+      phase_ = Phase::kTimeout;
+      break;
+    case Command::kBallPlacementYellow:
+    case Command::kBallPlacementBlue:
+      phase_ = Phase::kPlacing;
+      break;
+  }
+  // The kicker of a kickoff or penalty keeps its role through NORMAL_START.
+  if (!(command == Command::kNormalStart && phase_ == Phase::kKickPending))
+    executing_team_ = team_of(command);
+
+  if (command == Command::kTimeoutYellow && state_.yellow.timeouts > 0) --state_.yellow.timeouts;
+  if (command == Command::kTimeoutBlue && state_.blue.timeouts > 0) --state_.blue.timeouts;
+  state_.current_action_time_remaining.reset();
+  if (phase_ == Phase::kPlacing) {
+    state_.current_action_time_remaining = duration_from_seconds(profile_.game.placement_timeout);
+  }
+
+  const bool starts_play = command == Command::kNormalStart || command == Command::kForceStart;
+  if (starts_play && state_.stage == Stage::kNormalFirstHalfPre) enter_stage(Stage::kNormalFirstHalf, now);
+  if (starts_play && state_.stage == Stage::kNormalSecondHalfPre) enter_stage(Stage::kNormalSecondHalf, now);
+  if (phase_ == Phase::kRunning) start_running();
+}
+
+void BuiltinReferee::start_running() {
+  phase_ = Phase::kRunning;
+  state_.game_events.clear();  // the league's game_events are those since the last running state
+  ball_inside_since_running_.reset();
+}
+
+void BuiltinReferee::enter_stage(Stage stage, Timestamp now) {
+  state_.stage = stage;
+  state_.stage_time_left.reset();
+  switch (stage) {
+    case Stage::kNormalFirstHalf:
+    case Stage::kNormalSecondHalf:
+      state_.stage_time_left = duration_from_seconds(profile_.game.half_duration);
+      break;
+    case Stage::kNormalHalfTime:
+      state_.stage_time_left = duration_from_seconds(profile_.game.half_time);
+      apply({.command = Command::kHalt, .reason = "half time"}, now);
+      break;
+    case Stage::kNormalSecondHalfPre: {
+      const TeamColor second_kickoff = opponent(profile_.game.kickoff_team);
+      apply({.command = Command::kStop,
+             .next_command = kickoff(second_kickoff),
+             .next_is_automatic = profile_.game.auto_continue,
+             .reason = "second half: kickoff " + std::string(to_string(second_kickoff))},
+            now);
+      break;
+    }
+    case Stage::kPostGame:
+      apply({.command = Command::kHalt, .reason = "match over"}, now);
+      break;
+    default:
+      break;
+  }
+}
+
+std::optional<BuiltinReferee::Transition> BuiltinReferee::automatic_continuation(Timestamp now) const {
+  if (now - command_since_ < duration_from_seconds(profile_.game.stop_duration)) return std::nullopt;
+  if (phase_ == Phase::kStopped && automatic_next_ && state_.next_command) {
+    return standard_transition(*state_.next_command, std::nullopt,
+                               "automatic: " + std::string(to_string(*state_.next_command)));
+  }
+  if (phase_ == Phase::kPreparing && profile_.game.auto_continue) {
+    return standard_transition(Command::kNormalStart, std::nullopt, "automatic: NORMAL_START");
+  }
+  return std::nullopt;
+}
+
+// -------------------------------------------------------------------------------------------------------
+// Rules
+
+std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_running(const CleanObservation& seen,
+                                                                        Timestamp now) {
+  if (seen.ball) {
+    const Vec2& ball = *seen.ball;
+    const bool inside = std::abs(ball.x()) <= 0.5 * field_.field_length + field_.ball_radius &&
+                        std::abs(ball.y()) <= 0.5 * field_.field_width + field_.ball_radius;
+    if (inside) {
+      ball_inside_since_running_ = ball;
+    } else if (ball_inside_since_running_) {
+      std::optional<Transition> decision = judge_ball_left_field(ball, now);
+      ball_inside_since_running_.reset();  // judged once, even when ignored (cooldown, rule disabled)
+      if (decision) return decision;
+    }
+  }
+  return judge_defense_areas(seen, now);
+}
+
+std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_ball_left_field(const Vec2& ball,
+                                                                                Timestamp now) {
+  // Where the path from the last in-field position crossed the first line (the ball wholly over it).
+  const Vec2 from = *ball_inside_since_running_;
+  const Vec2 path = ball - from;
+  const double beyond_goal_line = 0.5 * field_.field_length + field_.ball_radius;
+  const double beyond_touch_line = 0.5 * field_.field_width + field_.ball_radius;
+  double to_goal_line = std::numeric_limits<double>::infinity();
+  double to_touch_line = std::numeric_limits<double>::infinity();
+  if (std::abs(ball.x()) > beyond_goal_line)
+    to_goal_line = (sign_of(ball.x()) * beyond_goal_line - from.x()) / path.x();
+  if (std::abs(ball.y()) > beyond_touch_line)
+    to_touch_line = (sign_of(ball.y()) * beyond_touch_line - from.y()) / path.y();
+  const bool over_goal_line = to_goal_line <= to_touch_line;
+  const Vec2 exit = from + std::min(to_goal_line, to_touch_line) * path;
+
+  if (over_goal_line && std::abs(exit.y()) <= 0.5 * field_.goal_width - field_.ball_radius) {
+    const GoalDetectionRule& rule = profile_.rules.goal_detection;
+    if (!rule.enabled) return std::nullopt;
+    if (last_goal_ && now - *last_goal_ < duration_from_seconds(rule.cooldown)) return std::nullopt;
+    last_goal_ = now;
+    const TeamColor conceding = defender_of_goal_at(exit.x());
+    const TeamColor scoring = opponent(conceding);
+    ++team_info(scoring).score;
+    GameEvent goal{.type = GameEventType::kGoal, .by_team = to_team(scoring), .location = exit};
+    if (last_touch_ && last_touch_->team == scoring) goal.by_bot = last_touch_->id;
+    raise(std::move(goal), now, /*is_foul=*/false);
+    return after_goal(conceding);
+  }
+
+  const OutOfBoundsRule& rule = profile_.rules.out_of_bounds;
+  if (!rule.enabled) return std::nullopt;
+  const double x_sign = sign_of(exit.x());
+  const double y_sign = sign_of(exit.y());
+  const double half_length = 0.5 * field_.field_length;
+  const double half_width = 0.5 * field_.field_width;
+  // Unknown last touch: a goal kick for the goal line's defenders, or a throw-in for the team defending
+  // the half where the ball went out.
+  const TeamColor kicking_team = last_touch_ ? opponent(last_touch_->team) : defender_of_goal_at(exit.x());
+  Vec2 placement_point;
+  if (over_goal_line) {
+    const bool goal_kick = kicking_team == defender_of_goal_at(exit.x());
+    const double from_goal_line = goal_kick ? rule.goal_kick_distance : rule.line_distance;
+    placement_point = {x_sign * (half_length - from_goal_line), y_sign * (half_width - rule.line_distance)};
+  } else {
+    const double max_x = half_length - rule.line_distance;
+    placement_point = {std::clamp(exit.x(), -max_x, max_x), y_sign * (half_width - rule.line_distance)};
+  }
+  GameEvent left{
+      .type = over_goal_line ? GameEventType::kBallLeftFieldGoalLine : GameEventType::kBallLeftFieldTouchLine,
+      .location = exit};
+  if (last_touch_) {
+    left.by_team = to_team(last_touch_->team);
+    left.by_bot = last_touch_->id;
+  }
+  raise(std::move(left), now, /*is_foul=*/false);
+  return free_kick_after_ball_left(
+      kicking_team, placement_point,
+      std::string(over_goal_line ? "ball over the goal line" : "ball over the touch line") + ": free kick " +
+          std::string(to_string(kicking_team)));
+}
+
+BuiltinReferee::Transition BuiltinReferee::after_goal(TeamColor conceding_team) const {
+  const std::string reason = "goal for " + std::string(to_string(opponent(conceding_team)));
+  if (profile_.game.force_start_after_goal) {
+    return {.command = Command::kStop,
+            .next_command = Command::kForceStart,
+            .next_is_automatic = true,
+            .reason = reason};
+  }
+  return {.command = Command::kStop,
+          .next_command = kickoff(conceding_team),
+          .next_is_automatic = profile_.game.auto_continue,
+          .reason = reason};
+}
+
+BuiltinReferee::Transition BuiltinReferee::free_kick_after_ball_left(TeamColor kicking_team,
+                                                                     const Vec2& placement_point,
+                                                                     const std::string& reason) const {
+  if (profile_.rules.out_of_bounds.ball_placement && team_info(kicking_team).can_place_ball) {
+    return {.command = ball_placement(kicking_team),
+            .next_command = direct_free(kicking_team),
+            .designated_position = placement_point,
+            .placement_attempt = 1,
+            .reason = reason};
+  }
+  // Nobody places the ball: the free kick follows by itself only when the profile continues everything.
+  return {.command = Command::kStop,
+          .next_command = direct_free(kicking_team),
+          .next_is_automatic = profile_.game.auto_continue,
+          .reason = reason};
+}
+
+std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_placement(const CleanObservation& seen,
+                                                                          Timestamp now) {
+  const TeamColor placer = executing_team_.value_or(TeamColor::kYellow);
+  const Vec2 target = state_.designated_position.value_or(Vec2::Zero());
+  std::optional<double> remaining;
+  if (seen.ball) {
+    remaining = (*seen.ball - target).norm();
+    const bool placed = *remaining <= profile_.game.placement_tolerance && seen.ball_speed &&
+                        *seen.ball_speed <= kBallAtRestSpeed;
+    if (!placed) {
+      placement_ok_since_.reset();
+    } else if (!placement_ok_since_) {
+      placement_ok_since_ = now;
+    }
+    if (placed && now - *placement_ok_since_ >= duration_from_seconds(kPlacementHold)) {
+      TeamInfo& info = team_info(placer);
+      if (info.ball_placement_failures > 0) --info.ball_placement_failures;
+      raise({.type = GameEventType::kPlacementSucceeded,
+             .by_team = to_team(placer),
+             .location = seen.ball,
+             .value = remaining},
+            now, /*is_foul=*/false);
+      const Command next = state_.next_command.value_or(direct_free(placer));
+      return Transition{.command = Command::kStop,
+                        .next_command = next,
+                        .next_is_automatic = is_direct_free(next) || profile_.game.auto_continue,
+                        .reason = "ball placed by " + std::string(to_string(placer))};
+    }
+  }
+  if (now - command_since_ < duration_from_seconds(profile_.game.placement_timeout)) return std::nullopt;
+
+  TeamInfo& info = team_info(placer);
+  ++info.ball_placement_failures;
+  if (info.ball_placement_failures >= kMaxPlacementFailures) {
+    info.ball_placement_failures_reached = true;
+    info.can_place_ball = false;
+  }
+  raise({.type = GameEventType::kPlacementFailed,
+         .by_team = to_team(placer),
+         .location = seen.ball,
+         .value = remaining},
+        now, /*is_foul=*/false);
+  const TeamColor other = opponent(placer);
+  const std::string reason = "placement by " + std::string(to_string(placer)) + " failed";
+  if (placement_attempt_ == 1 && team_info(other).can_place_ball) {
+    return Transition{.command = ball_placement(other),
+                      .next_command = direct_free(other),
+                      .designated_position = target,
+                      .placement_attempt = 2,
+                      .reason = reason + ": " + std::string(to_string(other)) + " places"};
+  }
+  return Transition{.command = Command::kStop,
+                    .next_command = direct_free(other),
+                    .reason = reason + ": the ball must be placed by hand"};
+}
+
+std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_defense_areas(const CleanObservation& seen,
+                                                                              Timestamp now) {
+  const DefenseAreaRule& rule = profile_.rules.defense_area;
+  if (!rule.enabled) return std::nullopt;
+  const double radius = field_.robot_radius;
+  const auto area_of = [this](TeamColor defending_team) {
+    const double goal_x = goal_x_of(defending_team);
+    const double inner_x = goal_x - sign_of(goal_x) * field_.defense_area_depth;
+    const double half_width = 0.5 * field_.defense_area_width;
+    return Area{{std::min(goal_x, inner_x), -half_width}, {std::max(goal_x, inner_x), half_width}};
+  };
+
+  for (const TeamColor team : {TeamColor::kYellow, TeamColor::kBlue}) {
+    const Area own_area = area_of(team);
+    const std::uint32_t goalkeeper = team_info(team).goalkeeper;
+    std::uint32_t inside = 0;
+    const ObservedRobot* offender = nullptr;
+    // The offender: a non-goalkeeper before the goalkeeper, then the deepest, then the lowest id.
+    const auto worse = [&](const ObservedRobot& a, const ObservedRobot& b) {
+      const bool a_keeper = a.id == goalkeeper;
+      const bool b_keeper = b.id == goalkeeper;
+      if (a_keeper != b_keeper) return b_keeper;
+      const double a_depth = own_area.depth(a.position);
+      const double b_depth = own_area.depth(b.position);
+      if (a_depth != b_depth) return a_depth > b_depth;
+      return a.id < b.id;
+    };
+    for (const ObservedRobot& robot : seen.robots) {
+      if (robot.team != team || !own_area.entirely_contains(robot.position, radius)) continue;
+      ++inside;
+      if (offender == nullptr || worse(robot, *offender)) offender = &robot;
+    }
+    if (inside > rule.max_defenders) {
+      raise({.type = GameEventType::kDefenderInDefenseArea,
+             .by_team = to_team(team),
+             .by_bot = offender->id,
+             .location = offender->position,
+             .value = own_area.depth(offender->position)},
+            now, /*is_foul=*/false);
+      const TeamColor kicker = opponent(team);
+      return Transition{.command = penalty(kicker),
+                        .next_command = Command::kNormalStart,
+                        .reason = std::to_string(inside) + " " + std::string(to_string(team)) +
+                                  " robots in their defense area: penalty " + std::string(to_string(kicker))};
+    }
+  }
+
+  if (!rule.attacker_infringement) return std::nullopt;
+  const double reach = field_.robot_radius + field_.ball_radius + kTouchMargin;
+  for (const TeamColor team : {TeamColor::kYellow, TeamColor::kBlue}) {
+    const TeamColor defending = opponent(team);
+    const Area their_area = area_of(defending);
+    for (const ObservedRobot& robot : seen.robots) {
+      if (robot.team != team) continue;
+      const bool touches_ball = seen.ball && (robot.position - *seen.ball).norm() <= reach;
+      std::optional<GameEventType> offence;
+      if (touches_ball && their_area.partly_contains(robot.position, radius)) {
+        offence = GameEventType::kAttackerTouchedBallInDefenseArea;
+      } else if (their_area.entirely_contains(robot.position, radius)) {
+        offence = GameEventType::kAttackerTooCloseToDefenseArea;
+      }
+      if (!offence) continue;
+      raise({.type = *offence,
+             .by_team = to_team(team),
+             .by_bot = robot.id,
+             .location = robot.position,
+             .value = their_area.depth(robot.position) + radius},
+            now, /*is_foul=*/true);
+      return Transition{.command = Command::kStop,
+                        .next_command = direct_free(defending),
+                        .next_is_automatic = true,
+                        .reason = std::string(to_string(team)) + " attacker in the defense area: free kick " +
+                                  std::string(to_string(defending))};
+    }
+  }
+  return std::nullopt;
+}
+
+void BuiltinReferee::judge_keep_out(const CleanObservation& seen, Timestamp now) {
+  const KeepOutRule& rule = profile_.rules.keep_out;
+  if (!rule.enabled || !seen.ball) return;
+  const bool placing = phase_ == Phase::kPlacing && state_.designated_position.has_value();
+  // In STOP both teams keep out; during a restart the team executing it may approach.
+  const bool both_teams = phase_ == Phase::kStopped || !executing_team_;
+  const TeamColor executing = executing_team_.value_or(TeamColor::kYellow);
+  const time::Duration persistence = duration_from_seconds(rule.violation_persistence);
+  for (const ObservedRobot& robot : seen.robots) {
+    if (!both_teams && robot.team == executing) continue;
+    // During a placement the whole path of the ball to its target is kept clear (a stadium).
+    const double centre_distance =
+        placing ? distance_to_segment(robot.position, *seen.ball, *state_.designated_position)
+                : (robot.position - *seen.ball).norm();
+    const double distance = centre_distance - field_.robot_radius;
+    const auto key = std::pair{robot.team, robot.id};
+    if (distance >= rule.radius) {
+      keep_out_since_.erase(key);
+      continue;
+    }
+    auto& [since, reported] = keep_out_since_.try_emplace(key, now, false).first->second;
+    if (reported || now - since < persistence) continue;
+    reported = true;
+    raise({.type =
+               placing ? GameEventType::kBotInterferedPlacement : GameEventType::kDefenderTooCloseToKickPoint,
+           .by_team = to_team(robot.team),
+           .by_bot = robot.id,
+           .location = robot.position,
+           .value = std::max(distance, 0.0)},
+          now, /*is_foul=*/true);
+  }
+}
+
+void BuiltinReferee::raise(GameEvent event, Timestamp now, bool is_foul) {
+  event.id = "builtin-" + std::to_string(++event_sequence_);
+  event.created_referee = now;
+  if (is_foul && event.by_team == Team::kYellow) ++state_.yellow.foul_counter;
+  if (is_foul && event.by_team == Team::kBlue) ++state_.blue.foul_counter;
+  state_.game_events.push_back(std::move(event));
+}
+
+TeamInfo& BuiltinReferee::team_info(TeamColor team) {
+  return team == TeamColor::kYellow ? state_.yellow : state_.blue;
+}
+
+const TeamInfo& BuiltinReferee::team_info(TeamColor team) const {
+  return team == TeamColor::kYellow ? state_.yellow : state_.blue;
+}
+
+double BuiltinReferee::goal_x_of(TeamColor defending_team) const {
+  const bool blue_positive = state_.blue_team_on_positive_half.value_or(true);
+  const bool positive = (defending_team == TeamColor::kBlue) == blue_positive;
+  return (positive ? 0.5 : -0.5) * field_.field_length;
+}
+
+TeamColor BuiltinReferee::defender_of_goal_at(double x) const {
+  return goal_x_of(TeamColor::kBlue) * sign_of(x) > 0 ? TeamColor::kBlue : TeamColor::kYellow;
+}
+
+}  // namespace ssl::referee

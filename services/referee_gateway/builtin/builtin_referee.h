@@ -1,0 +1,255 @@
+// BuiltinReferee: an automatic referee in the manner of the SSL Game Controller, for matches without one
+// (simulated AI-vs-AI matches, the lab). Pure: no threads, no DDS, no sockets, no protobuf, no clock. The
+// caller feeds vision observations with the current time and forwards the operator's commands; the
+// referee answers with a RefereeState (source kBuiltin) that the adapter publishes like a Game
+// Controller's. Same inputs in the same order give the same state.
+//
+// Frame and units: the SSL-Vision global frame, metres, m/s. Clock: `now` is the caller's Unix wall
+// clock (the simulated one in lockstep runs); it stamps the packet and command times and drives every
+// timer. step() ignores a `now` earlier than the previous one; command() and next_stage() use the
+// previous time instead (both counted), so time never runs backwards inside.
+//
+// State machine. Each command puts the referee into a phase; the transition bookkeeping (counter, command
+// time, next command, designated position, timers, phase, stage start of a half) lives in one function,
+// `apply`, which every operator command, rule decision and stage change goes through:
+//   HALT -> halted | STOP -> stopped | BALL_PLACEMENT_* -> placing | PREPARE_* -> preparing |
+//   DIRECT_FREE_* and NORMAL_START after a preparation -> kick pending (the ball is in play once it moved
+//   0.05 m; that changes no command) | FORCE_START, NORMAL_START otherwise -> running | TIMEOUT_* ->
+//   timeout.
+// Rule decisions (goal, out of bounds, defense area) are taken only while running; keep-out is checked in
+// stopped, placing, preparing and kick pending. Automatic continuations: in STOP the pending next_command
+// is issued after the profile's stop_duration when it was marked automatic (FORCE_START after a goal with
+// force_start_after_goal; a free kick after a successful placement or a foul; a kickoff or penalty only
+// with auto_continue); a preparation gets its NORMAL_START after stop_duration only with auto_continue.
+// Nothing automatic happens during HALT or a timeout; the operator's commands always take effect.
+//
+// Rules (each only when the profile enables it; thresholds in m and s):
+//  * last touch: the robot nearest to the ball with centres within robot + ball radius + kTouchMargin.
+//  * goal: the ball wholly over the goal line (centre beyond it by the ball radius) where its path crossed
+//    between the posts (|y| <= goal_width / 2 - ball radius). Score for the team attacking that goal,
+//    kGoal, STOP; next: FORCE_START (force_start_after_goal, automatic) or the conceding team's kickoff.
+//    Goals within `cooldown` of the last one are ignored, and the ball must have been seen in the field
+//    since play (re)started, so a ball left lying in the goal never scores twice.
+//  * out of bounds: the ball wholly over a touch line or over the goal line outside the posts. Free kick
+//    for the team that did not touch it last (unknown: the defenders of that half). Placement point:
+//    line_distance inside the touch line at the exit x (kept line_distance from the goal lines); over a
+//    goal line line_distance inside the touch line and line_distance (corner kick) or goal_kick_distance
+//    (goal kick) inside the goal line. With ball_placement: BALL_PLACEMENT for that team; success = ball
+//    within placement_tolerance of the target at <= kBallAtRestSpeed for kPlacementHold -> STOP, then the
+//    free kick after stop_duration. Timeout (placement_timeout): kPlacementFailed, the other team places
+//    for its own free kick; a second timeout -> STOP, the ball is placed by hand.
+//  * defense area: more than max_defenders robots of a team entirely inside their own area -> penalty for
+//    the other team (PREPARE_PENALTY, next NORMAL_START). An attacker entirely inside the opponent's
+//    area, or touching the ball while partly inside -> foul, STOP, then (automatic) the defenders' free
+//    kick where the ball is.
+//  * keep-out: in STOP every robot, during a restart (placement, preparation, free kick before the ball
+//    is in play) the other team's robots, must keep `radius` between their nearest side and the ball (for
+//    a placement: the segment ball -> target). Inside for `violation_persistence` -> one foul per stay
+//    (foul_counter +1); the command does not change.
+// game_events holds the events since the ball was last in play, each with a unique id "builtin-<n>".
+//
+// Stages: NORMAL_FIRST_HALF_PRE -> (NORMAL_START / FORCE_START) NORMAL_FIRST_HALF -> (half_duration of
+// playing time) NORMAL_HALF_TIME with HALT -> (half_time) NORMAL_SECOND_HALF_PRE with STOP and the other
+// team's kickoff pending -> NORMAL_SECOND_HALF -> POST_GAME with HALT. The halves' clock runs only while
+// the game runs (NORMAL_START, FORCE_START, DIRECT_FREE_*), as the Game Controller's does; the half-time
+// clock runs always. next_stage() advances by hand with the same effects. No extra time or shoot-out.
+//
+//   BuiltinReferee referee(*load_referee_profile("strict_ai"), FieldGeometry::division_b(),
+//                          {.yellow = {"ER-Force", 0}, .blue = {"TIGERs", 1}, .max_allowed_bots = 6});
+//   referee.command(Command::kStop, wall.now());
+//   referee.step(observation_from(frame), wall.now());   // each vision frame
+//   publish(referee.state());
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "libs/common/result.h"
+#include "libs/common/team.h"
+#include "libs/geometry/vec2.h"
+#include "libs/time/time.h"
+#include "services/referee_gateway/builtin/profile.h"
+#include "services/referee_gateway/core/types.h"
+
+namespace ssl::referee {
+
+/// The field as the division defines it (the rules' numbers; venues may differ, so an adapter may fill it
+/// from vision geometry). Metres; lengths along x (goal to goal), widths along y.
+struct FieldGeometry {
+  double field_length = 0;  // goal line to goal line
+  double field_width = 0;   // touch line to touch line
+  double goal_width = 0;    // inner, between the posts
+  double goal_depth = 0;
+  double defense_area_depth = 0;  // along x, from the goal line
+  double defense_area_width = 0;  // along y, centred on the goal
+  double center_circle_radius = 0;
+  double penalty_mark_distance = 0;  // from the centre of the goal the penalty is shot at
+  double robot_radius = 0.09;
+  double ball_radius = 0.0215;
+
+  static FieldGeometry division_a();  // 12 x 9 m, goal 1.8 m, defense area 3.6 x 1.8 m
+  static FieldGeometry division_b();  // 9 x 6 m, goal 1.0 m, defense area 2 x 1 m
+};
+
+/// Ok when every length is finite and positive and the areas fit in the field. The referee assumes it.
+Status check_field_geometry(const FieldGeometry& field);
+
+struct TeamSetup {
+  std::string name;
+  std::uint32_t goalkeeper = 0;
+};
+
+struct MatchSetup {
+  TeamSetup yellow;
+  TeamSetup blue;
+  std::uint32_t max_allowed_bots = 6;  // per team: 11 in division A, 6 in division B
+  bool blue_on_positive_half = true;   // blue defends the goal at +x
+};
+
+/// One vision frame as the referee needs it (SSL-Vision global frame, m, m/s).
+struct ObservedRobot {
+  TeamColor team = TeamColor::kYellow;
+  std::uint32_t id = 0;  // 0..15 (vision patterns); others are ignored
+  geom::Vec2 position = geom::Vec2::Zero();
+};
+
+struct Observation {
+  std::optional<geom::Vec2> ball_position;  // absent when the ball is not seen
+  std::optional<geom::Vec2> ball_velocity;  // absent: estimated from successive positions
+  std::vector<ObservedRobot> robots;
+};
+
+/// Inputs that were ignored, by reason (for system.health). Nothing is dropped without a count.
+struct InputCounters {
+  std::uint64_t observations = 0;         // step() calls accepted
+  std::uint64_t time_went_backwards = 0;  // step() / command() with `now` before the previous one
+  std::uint64_t missing_ball = 0;         // observations without a ball
+  std::uint64_t invalid_ball = 0;         // NaN / infinite ball position or velocity (that value ignored)
+  std::uint64_t invalid_robot = 0;        // NaN / infinite robot position
+  std::uint64_t unknown_robot_id = 0;     // id above 15
+  std::uint64_t duplicate_robot = 0;      // same team and id twice in one observation (first one kept)
+  std::uint64_t rejected_commands = 0;    // operator commands refused (see command())
+};
+
+class BuiltinReferee {
+ public:
+  static constexpr std::uint32_t kMaxRobotId = 15;
+  static constexpr double kTouchMargin = 0.02;     // m beyond robot + ball radius that counts as touch
+  static constexpr double kInPlayDistance = 0.05;  // m the ball moves after a kick command: in play
+  static constexpr double kBallAtRestSpeed = 0.1;  // m/s
+  static constexpr double kPlacementHold = 0.5;    // s the placed ball must stay placed and at rest
+  static constexpr std::uint32_t kTimeoutsPerTeam = 4;
+  static constexpr double kTimeoutBudget = 300;              // s per team
+  static constexpr std::uint32_t kMaxPlacementFailures = 5;  // then the team may no longer place
+
+  /// Starts in NORMAL_FIRST_HALF_PRE with HALT and the profile's kickoff as next_command (issued after a
+  /// STOP by itself with auto_continue). The first step() or command() stamps the initial command time.
+  BuiltinReferee(RefereeProfile profile, FieldGeometry field, MatchSetup match = {});
+
+  /// One vision observation at `now` (Unix wall clock). Bad values are ignored and counted.
+  void step(const Observation& observation, time::Timestamp now);
+
+  /// An operator command at `now`. BALL_PLACEMENT_* needs a finite `designated_position` (m); other
+  /// commands ignore it. Refused (error, counted, state unchanged): GOAL_* and INDIRECT_FREE_*
+  /// (deprecated), values outside the enum, a placement without a valid target.
+  Status command(Command command, time::Timestamp now, std::optional<geom::Vec2> designated_position = {});
+
+  /// Which goal blue defends (usually swapped by the operator at half time). Not a new command.
+  void set_blue_on_positive_half(bool blue_on_positive_half);
+
+  /// Advances to the next stage by hand (see the header comment); an error in POST_GAME.
+  Status next_stage(time::Timestamp now);
+
+  const RefereeState& state() const { return state_; }
+  const InputCounters& counters() const { return counters_; }
+  /// True while the ball is in play (rules are judged).
+  bool game_running() const { return phase_ == Phase::kRunning; }
+  const RefereeProfile& profile() const { return profile_; }
+  const FieldGeometry& field() const { return field_; }
+
+ private:
+  enum class Phase { kHalted, kStopped, kPlacing, kPreparing, kKickPending, kRunning, kTimeout };
+
+  /// A command change with everything it brings; the one input of apply().
+  struct Transition {
+    Command command = Command::kHalt;
+    std::optional<Command> next_command;
+    std::optional<geom::Vec2> designated_position;
+    bool next_is_automatic = false;  // STOP: issue next_command after stop_duration
+    int placement_attempt = 0;       // BALL_PLACEMENT: 1 the first team, 2 the other after a failure
+    std::string reason;              // status_message
+  };
+
+  struct CleanObservation {
+    std::optional<geom::Vec2> ball;
+    std::optional<double> ball_speed;  // m/s, measured or estimated from the previous position
+    std::vector<ObservedRobot> robots;
+  };
+
+  struct Touch {
+    TeamColor team;
+    std::uint32_t id;
+  };
+
+  // The state machine's one transition function.
+  void apply(const Transition& transition, time::Timestamp now);
+  void enter_stage(Stage stage, time::Timestamp now);
+  void start_running();
+  /// Advances the clocks to `now` and stamps the packet; the first call also stamps the initial command.
+  void begin(time::Timestamp now);
+  Transition standard_transition(Command command, std::optional<geom::Vec2> designated_position,
+                                 std::string reason) const;
+
+  CleanObservation clean(const Observation& observation, time::Timestamp now);
+  void track_kick(const CleanObservation& observation);
+  void update_last_touch(const CleanObservation& observation);
+
+  // Rules: each returns the transition it decides (or nothing) and raises its events.
+  std::optional<Transition> judge_running(const CleanObservation& observation, time::Timestamp now);
+  std::optional<Transition> judge_ball_left_field(const geom::Vec2& ball, time::Timestamp now);
+  std::optional<Transition> judge_defense_areas(const CleanObservation& observation, time::Timestamp now);
+  std::optional<Transition> judge_placement(const CleanObservation& observation, time::Timestamp now);
+  std::optional<Transition> automatic_continuation(time::Timestamp now) const;
+  void judge_keep_out(const CleanObservation& observation, time::Timestamp now);
+
+  Transition free_kick_after_ball_left(TeamColor kicking_team, const geom::Vec2& placement_point,
+                                       const std::string& reason) const;
+  Transition after_goal(TeamColor conceding_team) const;
+  void raise(GameEvent event, time::Timestamp now, bool is_foul);
+
+  TeamInfo& team_info(TeamColor team);
+  const TeamInfo& team_info(TeamColor team) const;
+  double goal_x_of(TeamColor defending_team) const;  // +-field_length/2
+  TeamColor defender_of_goal_at(double x) const;     // the team defending the goal on x's side
+
+  RefereeProfile profile_;
+  FieldGeometry field_;
+  RefereeState state_;
+  InputCounters counters_;
+
+  Phase phase_ = Phase::kHalted;
+  bool automatic_next_ = false;
+  std::optional<TeamColor> executing_team_;  // kicker / placer of the current restart
+  std::optional<time::Timestamp> last_now_;
+  time::Timestamp command_since_;
+  std::uint64_t event_sequence_ = 0;
+
+  std::optional<geom::Vec2> last_ball_;  // latest valid ball position
+  std::optional<time::Timestamp> last_ball_time_;
+  std::optional<geom::Vec2> kick_reference_ball_;        // where the ball was when the kick command came
+  std::optional<geom::Vec2> ball_inside_since_running_;  // last in-field ball position while running
+  std::optional<Touch> last_touch_;
+  std::optional<time::Timestamp> last_goal_;
+
+  int placement_attempt_ = 0;                          // 1: first team, 2: the other team after a failure
+  std::optional<time::Timestamp> placement_ok_since_;  // ball placed and at rest since
+
+  // Keep-out: since when each robot (team, id) has been too close, and whether it was already reported.
+  std::map<std::pair<TeamColor, std::uint32_t>, std::pair<time::Timestamp, bool>> keep_out_since_;
+};
+
+}  // namespace ssl::referee

@@ -1,0 +1,640 @@
+// The built-in referee driven by scripted observations at explicit times (no sleeps, no threads). Field:
+// division B (9 x 6 m, goals 1 m wide, defense areas 2 x 1 m); blue defends the goal at +x unless a test
+// says otherwise, so yellow attacks +x.
+#include "services/referee_gateway/builtin/builtin_referee.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace ssl::referee {
+namespace {
+
+using geom::Vec2;
+using time::duration_from_seconds;
+using time::Timestamp;
+
+const Timestamp kStart = Timestamp::from_seconds(1'700'000'000.0);
+
+Timestamp at(double seconds) { return kStart + duration_from_seconds(seconds); }
+
+RefereeProfile builtin_profile(const char* name) {
+  auto profile = load_referee_profile(name);
+  EXPECT_TRUE(profile) << profile.error().message;
+  return profile ? *profile : RefereeProfile{};
+}
+
+ObservedRobot yellow(std::uint32_t id, Vec2 position) { return {TeamColor::kYellow, id, position}; }
+ObservedRobot blue(std::uint32_t id, Vec2 position) { return {TeamColor::kBlue, id, position}; }
+
+Observation ball_at(Vec2 ball, std::vector<ObservedRobot> robots = {}) {
+  return {.ball_position = ball, .ball_velocity = Vec2::Zero(), .robots = std::move(robots)};
+}
+
+/// A referee in NORMAL_FIRST_HALF with the ball in play (FORCE_START at t = 0).
+BuiltinReferee running_referee(RefereeProfile profile) {
+  BuiltinReferee referee(std::move(profile), FieldGeometry::division_b(),
+                         {.yellow = {"Yellow FC", 0}, .blue = {"Blue FC", 0}});
+  EXPECT_TRUE(referee.command(Command::kForceStart, at(0)));
+  return referee;
+}
+
+const GameEvent* last_event(const BuiltinReferee& referee) {
+  return referee.state().game_events.empty() ? nullptr : &referee.state().game_events.back();
+}
+
+void expect_near(const std::optional<Vec2>& actual, const Vec2& expected) {
+  ASSERT_TRUE(actual.has_value());
+  EXPECT_NEAR(actual->x(), expected.x(), 1e-9);
+  EXPECT_NEAR(actual->y(), expected.y(), 1e-9);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Commands, counter, times, stages
+
+TEST(BuiltinReferee, StartsHaltedBeforeTheFirstHalfWithTheKickoffPending) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_a(),
+                         {.yellow = {"Yellow FC", 1}, .blue = {"Blue FC", 2}, .max_allowed_bots = 11});
+  const RefereeState& state = referee.state();
+  EXPECT_EQ(state.source, RefereeSource::kBuiltin);
+  EXPECT_EQ(state.command, Command::kHalt);
+  EXPECT_EQ(state.command_counter, 0u);
+  EXPECT_EQ(state.stage, Stage::kNormalFirstHalfPre);
+  EXPECT_EQ(state.next_command, Command::kPrepareKickoffYellow);
+  EXPECT_EQ(state.yellow.name, "Yellow FC");
+  EXPECT_EQ(state.blue.goalkeeper, 2u);
+  EXPECT_TRUE(state.yellow.can_place_ball);
+  EXPECT_EQ(state.blue.max_allowed_bots, 11u);
+  EXPECT_EQ(state.yellow.timeouts, 4u);
+  EXPECT_EQ(state.blue_team_on_positive_half, true);
+}
+
+TEST(BuiltinReferee, EveryCommandIncrementsTheCounterAndIsStampedWithItsTime) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  referee.step(ball_at({0, 0}), at(0));
+  EXPECT_EQ(referee.state().command_referee, at(0)) << "the initial HALT is stamped by the first step";
+  EXPECT_EQ(referee.state().packet_referee, at(0));
+
+  ASSERT_TRUE(referee.command(Command::kStop, at(1)));
+  EXPECT_EQ(referee.state().command_counter, 1u);
+  EXPECT_EQ(referee.state().command_referee, at(1));
+  referee.step(ball_at({0, 0}), at(1.5));
+  EXPECT_EQ(referee.state().packet_referee, at(1.5));
+  EXPECT_EQ(referee.state().command_referee, at(1)) << "steps do not restamp the command";
+  ASSERT_TRUE(referee.command(Command::kStop, at(2)));
+  EXPECT_EQ(referee.state().command_counter, 2u) << "a repeated command is a new command";
+  EXPECT_EQ(referee.state().command_referee, at(2));
+}
+
+TEST(BuiltinReferee, OperatorCommandsSetNextCommandDesignatedPositionAndTimeouts) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  ASSERT_TRUE(referee.command(Command::kPrepareKickoffBlue, at(0)));
+  EXPECT_EQ(referee.state().next_command, Command::kNormalStart);
+  referee.step(ball_at({0, 0}), at(0.5));
+  ASSERT_TRUE(referee.command(Command::kNormalStart, at(1)));
+  EXPECT_EQ(referee.state().stage, Stage::kNormalFirstHalf);
+  EXPECT_EQ(referee.state().stage_time_left, duration_from_seconds(300));
+  EXPECT_FALSE(referee.game_running()) << "the kickoff is in play only once the ball moved";
+  referee.step(ball_at({0.03, 0}), at(1.5));
+  EXPECT_FALSE(referee.game_running());
+  referee.step(ball_at({0.06, 0}), at(2));
+  EXPECT_TRUE(referee.game_running());
+  EXPECT_EQ(referee.state().command, Command::kNormalStart) << "in play changes no command";
+
+  const std::uint32_t counter = referee.state().command_counter;
+  EXPECT_FALSE(referee.command(Command::kBallPlacementYellow, at(3)));
+  EXPECT_FALSE(referee.command(Command::kBallPlacementYellow, at(3), Vec2(std::nan(""), 0)));
+  EXPECT_FALSE(referee.command(Command::kGoalBlue, at(3)));
+  EXPECT_FALSE(referee.command(Command::kIndirectFreeYellow, at(3)));
+  EXPECT_FALSE(referee.command(static_cast<Command>(42), at(3)));
+  EXPECT_EQ(referee.counters().rejected_commands, 5u);
+  EXPECT_EQ(referee.state().command_counter, counter);
+
+  ASSERT_TRUE(referee.command(Command::kBallPlacementYellow, at(3), Vec2(1.0, -2.0)));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow);
+  expect_near(referee.state().designated_position, {1.0, -2.0});
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeYellow);
+  EXPECT_EQ(referee.state().current_action_time_remaining, duration_from_seconds(30));
+
+  ASSERT_TRUE(referee.command(Command::kHalt, at(4)));
+  EXPECT_FALSE(referee.state().designated_position);
+  ASSERT_TRUE(referee.command(Command::kTimeoutYellow, at(5)));
+  EXPECT_EQ(referee.state().yellow.timeouts, 3u);
+  referee.step(ball_at({0, 0}), at(65));
+  EXPECT_EQ(referee.state().yellow.timeout_time_left, duration_from_seconds(240));
+  EXPECT_EQ(referee.state().blue.timeout_time_left, duration_from_seconds(300));
+}
+
+TEST(BuiltinReferee, StagesRunOnPlayingTimeThenHalfTimeThenTheSecondHalfKickoffOfTheOtherTeam) {
+  RefereeProfile profile = builtin_profile("strict_ai");
+  profile.game.half_duration = 10;
+  profile.game.half_time = 5;
+  BuiltinReferee referee(profile, FieldGeometry::division_b());
+  ASSERT_TRUE(referee.command(Command::kForceStart, at(0)));
+  EXPECT_EQ(referee.state().stage, Stage::kNormalFirstHalf);
+  referee.step(ball_at({0, 0}), at(4));
+  EXPECT_EQ(referee.state().stage_time_left, duration_from_seconds(6));
+  ASSERT_TRUE(referee.command(Command::kStop, at(4)));
+  referee.step(ball_at({0, 0}), at(7));
+  EXPECT_EQ(referee.state().stage_time_left, duration_from_seconds(6)) << "the clock stops in STOP";
+  ASSERT_TRUE(referee.command(Command::kForceStart, at(7)));
+  referee.step(ball_at({0, 0}), at(12.9));
+  EXPECT_EQ(referee.state().stage, Stage::kNormalFirstHalf);
+  referee.step(ball_at({0, 0}), at(13));
+  EXPECT_EQ(referee.state().stage, Stage::kNormalHalfTime);
+  EXPECT_EQ(referee.state().command, Command::kHalt);
+  EXPECT_EQ(referee.state().stage_time_left, duration_from_seconds(5));
+  referee.step(ball_at({0, 0}), at(16));
+  EXPECT_EQ(referee.state().stage_time_left, duration_from_seconds(2)) << "half time runs in HALT";
+  referee.step(ball_at({0, 0}), at(18));
+  EXPECT_EQ(referee.state().stage, Stage::kNormalSecondHalfPre);
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kPrepareKickoffBlue);
+  EXPECT_FALSE(referee.state().stage_time_left);
+  referee.step(ball_at({0, 0}), at(30));
+  EXPECT_EQ(referee.state().command, Command::kStop) << "strict_ai waits for the operator's kickoff";
+
+  ASSERT_TRUE(referee.command(Command::kPrepareKickoffBlue, at(31)));
+  ASSERT_TRUE(referee.command(Command::kNormalStart, at(32)));
+  EXPECT_EQ(referee.state().stage, Stage::kNormalSecondHalf);
+  EXPECT_EQ(referee.state().stage_time_left, duration_from_seconds(10));
+  ASSERT_TRUE(referee.next_stage(at(33)));
+  EXPECT_EQ(referee.state().stage, Stage::kPostGame);
+  EXPECT_EQ(referee.state().command, Command::kHalt);
+  EXPECT_FALSE(referee.next_stage(at(34)));
+}
+
+TEST(BuiltinReferee, ArcadeRunsTheKickoffByItselfAfterOneStop) {
+  BuiltinReferee referee(builtin_profile("arcade"), FieldGeometry::division_b());
+  referee.step(ball_at({0, 0}), at(0));
+  ASSERT_TRUE(referee.command(Command::kStop, at(1)));
+  referee.step(ball_at({0, 0}), at(2.9));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  referee.step(ball_at({0, 0}), at(3));
+  EXPECT_EQ(referee.state().command, Command::kPrepareKickoffYellow);
+  referee.step(ball_at({0, 0}), at(5));
+  EXPECT_EQ(referee.state().command, Command::kNormalStart);
+  EXPECT_EQ(referee.state().stage, Stage::kNormalFirstHalf);
+  EXPECT_EQ(referee.state().command_counter, 3u);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Goals
+
+struct GoalCase {
+  bool blue_on_positive_half;
+  double goal_x_sign;  // which goal the ball goes into
+  Team scorer;
+  Command kickoff;  // for the team that conceded
+};
+
+void PrintTo(const GoalCase& c, std::ostream* out) {
+  *out << (c.blue_on_positive_half ? "blue on +x" : "blue on -x") << ", goal at "
+       << (c.goal_x_sign > 0 ? "+x" : "-x");
+}
+
+std::string goal_case_name(const ::testing::TestParamInfo<GoalCase>& info) {
+  return std::string(info.param.blue_on_positive_half ? "BlueOnPositiveHalf" : "BlueOnNegativeHalf") +
+         (info.param.goal_x_sign > 0 ? "GoalAtPlusX" : "GoalAtMinusX");
+}
+
+class GoalTest : public ::testing::TestWithParam<GoalCase> {};
+
+TEST_P(GoalTest, ScoresForTheAttackersStopsAndNamesTheKickoffOfTheTeamThatConceded) {
+  const GoalCase c = GetParam();
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  referee.set_blue_on_positive_half(c.blue_on_positive_half);
+  const std::uint32_t counter = referee.state().command_counter;
+  const ObservedRobot kicker = c.scorer == Team::kYellow ? yellow(3, {c.goal_x_sign * 3.18, 0.1})
+                                                         : blue(3, {c.goal_x_sign * 3.18, 0.1});
+  referee.step(ball_at({c.goal_x_sign * 3.3, 0.1}, {kicker}), at(1));
+  referee.step(ball_at({c.goal_x_sign * 4.6, 0.1}), at(1.1));
+
+  const RefereeState& state = referee.state();
+  EXPECT_EQ(state.yellow.score, c.scorer == Team::kYellow ? 1u : 0u);
+  EXPECT_EQ(state.blue.score, c.scorer == Team::kBlue ? 1u : 0u);
+  EXPECT_EQ(state.command, Command::kStop);
+  EXPECT_EQ(state.command_counter, counter + 1);
+  EXPECT_EQ(state.next_command, c.kickoff);
+  const GameEvent* goal = last_event(referee);
+  ASSERT_NE(goal, nullptr);
+  EXPECT_EQ(goal->type, GameEventType::kGoal);
+  EXPECT_EQ(goal->by_team, c.scorer);
+  EXPECT_EQ(goal->by_bot, 3u);
+  ASSERT_TRUE(goal->location);
+  EXPECT_NEAR(goal->location->x(), c.goal_x_sign * (4.5 + 0.0215), 1e-9);
+
+  referee.step(ball_at({c.goal_x_sign * 4.6, 0.1}), at(20));
+  EXPECT_EQ(referee.state().command, Command::kStop) << "strict_ai waits for the operator";
+  EXPECT_EQ(referee.state().command_counter, counter + 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothGoalsBothTeams, GoalTest,
+                         ::testing::Values(GoalCase{true, +1, Team::kYellow, Command::kPrepareKickoffBlue},
+                                           GoalCase{true, -1, Team::kBlue, Command::kPrepareKickoffYellow},
+                                           GoalCase{false, +1, Team::kBlue, Command::kPrepareKickoffYellow},
+                                           GoalCase{false, -1, Team::kYellow, Command::kPrepareKickoffBlue}),
+                         goal_case_name);
+
+TEST(BuiltinReferee, AnOwnGoalCountsForTheOpponentWithoutAKicker) {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  referee.step(ball_at({4.0, 0.0}, {blue(5, {3.88, 0.0})}), at(1));
+  referee.step(ball_at({4.6, 0.0}), at(1.1));
+  EXPECT_EQ(referee.state().yellow.score, 1u);
+  ASSERT_NE(last_event(referee), nullptr);
+  EXPECT_FALSE(last_event(referee)->by_bot);
+}
+
+TEST(BuiltinReferee, ABallBesideThePostIsNoGoal) {
+  BuiltinReferee referee = running_referee(builtin_profile("arcade"));
+  referee.step(ball_at({4.0, 0.7}), at(1));
+  referee.step(ball_at({4.6, 0.7}), at(1.1));
+  EXPECT_EQ(referee.state().yellow.score, 0u);
+  EXPECT_EQ(referee.state().command, Command::kForceStart);
+}
+
+TEST(BuiltinReferee, ArcadeForceStartsAfterStopDurationAndTheBallLeftInTheGoalScoresNoMore) {
+  BuiltinReferee referee = running_referee(builtin_profile("arcade"));
+  referee.step(ball_at({4.0, 0.0}), at(1));
+  referee.step(ball_at({4.6, 0.0}), at(1.1));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kForceStart);
+  referee.step(ball_at({4.6, 0.0}), at(3.05));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  referee.step(ball_at({4.6, 0.0}), at(3.1));
+  EXPECT_EQ(referee.state().command, Command::kForceStart);
+  EXPECT_TRUE(referee.game_running());
+  EXPECT_TRUE(referee.state().game_events.empty()) << "game events are cleared when play resumes";
+  referee.step(ball_at({4.6, 0.0}), at(10));
+  EXPECT_EQ(referee.state().yellow.score, 1u);
+}
+
+TEST(BuiltinReferee, GoalsWithinTheCooldownAreIgnored) {
+  RefereeProfile profile = builtin_profile("arcade");
+  profile.rules.goal_detection.cooldown = 5;
+  profile.game.stop_duration = 0.5;
+  BuiltinReferee referee = running_referee(profile);
+  referee.step(ball_at({4.0, 0.0}), at(1));
+  referee.step(ball_at({4.6, 0.0}), at(1.1));
+  referee.step(ball_at({0.0, 0.0}), at(1.6));  // automatic FORCE_START, ball back in the field
+  EXPECT_EQ(referee.state().command, Command::kForceStart);
+  referee.step(ball_at({-4.0, 0.0}), at(2));
+  referee.step(ball_at({-4.6, 0.0}), at(3));  // 1.9 s after the first goal
+  EXPECT_EQ(referee.state().blue.score, 0u);
+  EXPECT_EQ(referee.state().command, Command::kForceStart);
+  referee.step(ball_at({-4.0, 0.0}), at(6.5));
+  referee.step(ball_at({-4.6, 0.0}), at(7));
+  EXPECT_EQ(referee.state().blue.score, 1u);
+  EXPECT_EQ(referee.state().command, Command::kStop);
+}
+
+TEST(BuiltinReferee, NoGoalIsJudgedWhileStopped) {
+  BuiltinReferee referee(builtin_profile("arcade"), FieldGeometry::division_b());
+  ASSERT_TRUE(referee.command(Command::kStop, at(0)));
+  referee.step(ball_at({4.0, 0.0}), at(1));
+  referee.step(ball_at({4.6, 0.0}), at(1.1));
+  EXPECT_EQ(referee.state().yellow.score, 0u);
+  ASSERT_TRUE(referee.command(Command::kHalt, at(1.2)));
+  referee.step(ball_at({4.6, 0.0}), at(9));
+  EXPECT_EQ(referee.state().command, Command::kHalt) << "nothing automatic during HALT";
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Out of bounds and ball placement
+
+TEST(BuiltinReferee, TouchLineGivesPlacementAndFreeKickToTheTeamThatDidNotTouchLast) {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  referee.step(ball_at({1.0, 2.8}, {blue(2, {1.0, 2.68}), yellow(1, {0.0, 0.0})}), at(1));
+  referee.step(ball_at({1.2, 3.1}), at(1.1));
+  const RefereeState& state = referee.state();
+  EXPECT_EQ(state.command, Command::kBallPlacementYellow);
+  EXPECT_EQ(state.next_command, Command::kDirectFreeYellow);
+  const double exit_x = 1.0 + 0.2 * (3.0215 - 2.8) / 0.3;
+  expect_near(state.designated_position, {exit_x, 2.8});
+  const GameEvent* left = last_event(referee);
+  ASSERT_NE(left, nullptr);
+  EXPECT_EQ(left->type, GameEventType::kBallLeftFieldTouchLine);
+  EXPECT_EQ(left->by_team, Team::kBlue);
+  EXPECT_EQ(left->by_bot, 2u);
+  expect_near(left->location, {exit_x, 3.0215});
+}
+
+TEST(BuiltinReferee, TouchLinePlacementStaysAwayFromTheGoalLines) {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  referee.step(ball_at({-4.45, -2.9}, {yellow(4, {-4.45, -2.78})}), at(1));
+  referee.step(ball_at({-4.45, -3.2}), at(1.1));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementBlue);
+  expect_near(referee.state().designated_position, {-4.3, -2.8});
+}
+
+TEST(BuiltinReferee, GoalLineByTheAttackersIsAGoalKickAndByTheDefendersACorner) {
+  {
+    BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+    referee.step(ball_at({4.4, 1.5}, {yellow(7, {4.28, 1.5})}), at(1));
+    referee.step(ball_at({4.7, 1.5}), at(1.1));
+    EXPECT_EQ(referee.state().command, Command::kBallPlacementBlue);
+    EXPECT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
+    expect_near(referee.state().designated_position, {3.5, 2.8});
+    ASSERT_NE(last_event(referee), nullptr);
+    EXPECT_EQ(last_event(referee)->type, GameEventType::kBallLeftFieldGoalLine);
+    EXPECT_EQ(last_event(referee)->by_team, Team::kYellow);
+  }
+  {
+    BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+    referee.step(ball_at({4.4, -1.5}, {blue(1, {4.28, -1.5})}), at(1));
+    referee.step(ball_at({4.7, -1.5}), at(1.1));
+    EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow);
+    expect_near(referee.state().designated_position, {4.3, -2.8});
+  }
+}
+
+TEST(BuiltinReferee, WithoutBallPlacementOutOfBoundsStopsAndWaitsForTheOperator) {
+  RefereeProfile profile = builtin_profile("strict_ai");
+  profile.rules.out_of_bounds.ball_placement = false;
+  BuiltinReferee referee = running_referee(profile);
+  referee.step(ball_at({1.0, 2.8}, {blue(2, {1.0, 2.68})}), at(1));
+  referee.step(ball_at({1.2, 3.1}), at(1.1));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeYellow);
+  referee.step(ball_at({1.2, 3.1}), at(10));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+}
+
+/// strict_ai after blue kicked the ball over the touch line at t = 1.1: yellow places the ball.
+BuiltinReferee referee_with_yellow_placing() {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  referee.step(ball_at({1.0, 2.8}, {blue(2, {1.0, 2.68})}), at(1));
+  referee.step(ball_at({1.0, 3.1}), at(1.1));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow);
+  return referee;
+}
+
+TEST(BuiltinReferee, ASuccessfulPlacementIsFollowedByTheFreeKickAfterStopDuration) {
+  BuiltinReferee referee = referee_with_yellow_placing();
+  const Vec2 target = *referee.state().designated_position;
+  referee.step(ball_at(target + Vec2(0.1, 0.0)), at(5));
+  referee.step(ball_at(target + Vec2(0.1, 0.0)), at(5.49));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow) << "placed, but not held 0.5 s yet";
+  referee.step(ball_at(target + Vec2(0.1, 0.0)), at(5.5));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeYellow);
+  EXPECT_FALSE(referee.state().designated_position);
+  ASSERT_NE(last_event(referee), nullptr);
+  EXPECT_EQ(last_event(referee)->type, GameEventType::kPlacementSucceeded);
+  EXPECT_EQ(last_event(referee)->by_team, Team::kYellow);
+  EXPECT_NEAR(*last_event(referee)->value, 0.1, 1e-9);
+
+  referee.step(ball_at(target), at(7.5));
+  EXPECT_EQ(referee.state().command, Command::kDirectFreeYellow);
+  EXPECT_FALSE(referee.game_running());
+  referee.step(ball_at(target + Vec2(0.06, 0.0)), at(8));
+  EXPECT_TRUE(referee.game_running());
+}
+
+TEST(BuiltinReferee, AMovingBallIsNotPlaced) {
+  BuiltinReferee referee = referee_with_yellow_placing();
+  const Vec2 target = *referee.state().designated_position;
+  for (double t = 5; t < 7; t += 0.1) {
+    referee.step({.ball_position = target, .ball_velocity = Vec2(0.5, 0.0)}, at(t));
+  }
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow);
+  // Without a measured velocity the speed is estimated from successive positions.
+  referee.step({.ball_position = target}, at(7.0));
+  referee.step({.ball_position = target + Vec2(0.05, 0)}, at(7.1));
+  referee.step({.ball_position = target}, at(7.7));  // 0.08 m/s: at rest from here
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow);
+  referee.step({.ball_position = target}, at(8.3));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+}
+
+TEST(BuiltinReferee, APlacementTimeoutHandsThePlacementToTheOtherTeamThenToTheOperator) {
+  BuiltinReferee referee = referee_with_yellow_placing();
+  const Vec2 target = *referee.state().designated_position;
+  referee.step(ball_at({1.0, 3.1}), at(31.05));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow);
+  referee.step(ball_at({1.0, 3.1}), at(31.1));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementBlue);
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
+  expect_near(referee.state().designated_position, target);
+  EXPECT_EQ(referee.state().yellow.ball_placement_failures, 1u);
+  ASSERT_NE(last_event(referee), nullptr);
+  EXPECT_EQ(last_event(referee)->type, GameEventType::kPlacementFailed);
+  EXPECT_EQ(last_event(referee)->by_team, Team::kYellow);
+
+  referee.step(ball_at({1.0, 3.1}), at(61.1));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeYellow);
+  EXPECT_EQ(referee.state().blue.ball_placement_failures, 1u);
+  referee.step(ball_at({1.0, 3.1}), at(80));
+  EXPECT_EQ(referee.state().command, Command::kStop) << "the ball must be placed by hand";
+}
+
+TEST(BuiltinReferee, FiveFailedPlacementsTakeAwayTheRightToPlace) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  double t = 0;
+  for (int failure = 0; failure < 5; ++failure) {
+    ASSERT_TRUE(referee.command(Command::kBallPlacementBlue, at(t), Vec2(0, 0)));
+    t += 31;
+    referee.step(ball_at({2, 2}), at(t));
+  }
+  EXPECT_EQ(referee.state().blue.ball_placement_failures, 5u);
+  EXPECT_TRUE(referee.state().blue.ball_placement_failures_reached);
+  EXPECT_FALSE(referee.state().blue.can_place_ball);
+  EXPECT_TRUE(referee.state().yellow.can_place_ball);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Defense areas (blue's own area at +x: x in [3.5, 4.5], y in [-1, 1])
+
+TEST(BuiltinReferee, TooManyDefendersInTheirAreaGiveThePenaltyToTheOtherTeam) {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  referee.step(ball_at({0, 0}, {blue(0, {4.3, 0.0}), blue(4, {3.45, 0.2})}), at(1));
+  EXPECT_EQ(referee.state().command, Command::kForceStart) << "keeper inside, defender only partly inside";
+  referee.step(ball_at({0, 0}, {blue(0, {4.3, 0.0}), blue(4, {3.7, 0.2}), blue(6, {3.6, -0.5})}), at(2));
+  EXPECT_EQ(referee.state().command, Command::kPreparePenaltyYellow);
+  EXPECT_EQ(referee.state().next_command, Command::kNormalStart);
+  const GameEvent* foul = last_event(referee);
+  ASSERT_NE(foul, nullptr);
+  EXPECT_EQ(foul->type, GameEventType::kDefenderInDefenseArea);
+  EXPECT_EQ(foul->by_team, Team::kBlue);
+  EXPECT_EQ(foul->by_bot, 4u) << "the deepest robot that is not the goalkeeper";
+  EXPECT_NEAR(*foul->value, 0.2, 1e-9);
+  referee.step(ball_at({0, 0}), at(20));
+  EXPECT_EQ(referee.state().command, Command::kPreparePenaltyYellow) << "strict_ai: operator's NORMAL_START";
+}
+
+TEST(BuiltinReferee, AnAttackerInTheOpponentsAreaGivesAFreeKickToTheDefenders) {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  referee.step(ball_at({0, 0}, {yellow(5, {3.45, -0.5})}), at(1));
+  EXPECT_EQ(referee.state().command, Command::kForceStart) << "partly inside, away from the ball";
+  referee.step(ball_at({0, 0}, {yellow(5, {4.0, -0.5})}), at(2));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
+  const GameEvent* foul = last_event(referee);
+  ASSERT_NE(foul, nullptr);
+  EXPECT_EQ(foul->type, GameEventType::kAttackerTooCloseToDefenseArea);
+  EXPECT_EQ(foul->by_team, Team::kYellow);
+  EXPECT_EQ(foul->by_bot, 5u);
+  EXPECT_EQ(referee.state().yellow.foul_counter, 1u);
+  referee.step(ball_at({0, 0}), at(4));
+  EXPECT_EQ(referee.state().command, Command::kDirectFreeBlue)
+      << "free kicks after fouls follow by themselves";
+}
+
+TEST(BuiltinReferee, AnAttackerTouchingTheBallPartlyInsideTheAreaIsAFoul) {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  referee.step(ball_at({3.56, 0.0}, {yellow(8, {3.45, 0.0})}), at(1));
+  ASSERT_NE(last_event(referee), nullptr);
+  EXPECT_EQ(last_event(referee)->type, GameEventType::kAttackerTouchedBallInDefenseArea);
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Keep-out
+
+TEST(BuiltinReferee, ARobotTooCloseDuringStopFoulsOnceAfterThePersistence) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  ASSERT_TRUE(referee.command(Command::kStop, at(0)));
+  const std::uint32_t counter = referee.state().command_counter;
+  const Observation close = ball_at({0, 0}, {yellow(1, {0.3, 0.0}), blue(2, {0.8, 0.0})});
+  referee.step(close, at(0.5));
+  referee.step(close, at(2.4));
+  EXPECT_TRUE(referee.state().game_events.empty());
+  referee.step(close, at(2.5));
+  ASSERT_EQ(referee.state().game_events.size(), 1u);
+  const GameEvent& foul = referee.state().game_events[0];
+  EXPECT_EQ(foul.type, GameEventType::kDefenderTooCloseToKickPoint);
+  EXPECT_EQ(foul.by_team, Team::kYellow);
+  EXPECT_EQ(foul.by_bot, 1u);
+  EXPECT_NEAR(*foul.value, 0.21, 1e-9);
+  EXPECT_EQ(referee.state().yellow.foul_counter, 1u);
+  EXPECT_EQ(referee.state().blue.foul_counter, 0u);
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().command_counter, counter) << "a keep-out foul changes no command";
+  referee.step(close, at(6));
+  EXPECT_EQ(referee.state().game_events.size(), 1u) << "one foul per stay";
+  referee.step(ball_at({0, 0}, {yellow(1, {1.0, 0.0})}), at(6.5));
+  referee.step(close, at(7));
+  referee.step(close, at(9));
+  EXPECT_EQ(referee.state().yellow.foul_counter, 2u) << "leaving and coming back is a new stay";
+}
+
+TEST(BuiltinReferee, DuringAFreeKickOnlyTheOtherTeamMustKeepOut) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  ASSERT_TRUE(referee.command(Command::kDirectFreeYellow, at(0)));
+  const Observation close = ball_at({0, 0}, {yellow(1, {0.12, 0.0}), blue(2, {-0.3, 0.0})});
+  referee.step(close, at(0.1));
+  referee.step(close, at(3));
+  ASSERT_EQ(referee.state().game_events.size(), 1u);
+  EXPECT_EQ(referee.state().game_events[0].by_team, Team::kBlue);
+  EXPECT_EQ(referee.state().command, Command::kDirectFreeYellow);
+}
+
+TEST(BuiltinReferee, DuringPlacementThePathToTheTargetIsKeptClear) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  ASSERT_TRUE(referee.command(Command::kBallPlacementBlue, at(0), Vec2(2.0, 0.0)));
+  const Observation near_path = ball_at({0, 0}, {yellow(3, {1.0, 0.3}), blue(2, {0.1, 0.0})});
+  referee.step(near_path, at(0.1));
+  referee.step(near_path, at(2.2));
+  ASSERT_EQ(referee.state().game_events.size(), 1u);
+  EXPECT_EQ(referee.state().game_events[0].type, GameEventType::kBotInterferedPlacement);
+  EXPECT_EQ(referee.state().game_events[0].by_bot, 3u);
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementBlue);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Disabled rules, bad input, determinism
+
+TEST(BuiltinReferee, DisabledRulesDoNothing) {
+  BuiltinReferee referee = running_referee(builtin_profile("arcade"));
+  const std::uint32_t counter = referee.state().command_counter;
+  referee.step(ball_at({1.0, 2.8}, {blue(2, {1.0, 2.68})}), at(1));
+  referee.step(ball_at({1.2, 3.1}), at(1.1));  // over the touch line
+  referee.step(ball_at({0, 0}, {blue(0, {4.3, 0}), blue(4, {3.7, 0.2}), yellow(5, {-4.0, 0})}), at(2));
+  EXPECT_EQ(referee.state().command_counter, counter);
+  EXPECT_TRUE(referee.state().game_events.empty());
+  ASSERT_TRUE(referee.command(Command::kStop, at(3)));
+  referee.step(ball_at({0, 0}, {yellow(1, {0.1, 0.0})}), at(3.1));
+  referee.step(ball_at({0, 0}, {yellow(1, {0.1, 0.0})}), at(4.9));
+  EXPECT_TRUE(referee.state().game_events.empty());
+  EXPECT_EQ(referee.state().yellow.foul_counter, 0u);
+
+  RefereeProfile no_goals = builtin_profile("strict_ai");
+  no_goals.rules.goal_detection.enabled = false;
+  BuiltinReferee without_goals = running_referee(no_goals);
+  without_goals.step(ball_at({4.0, 0.0}), at(1));
+  without_goals.step(ball_at({4.6, 0.0}), at(1.1));
+  EXPECT_EQ(without_goals.state().yellow.score, 0u);
+  EXPECT_EQ(without_goals.state().command, Command::kForceStart) << "a goal is not a goal-line out";
+}
+
+TEST(BuiltinReferee, BadInputIsIgnoredAndCounted) {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  referee.step(ball_at({4.0, 0.0}), at(1));
+  const RefereeState before = referee.state();
+  referee.step({.ball_position = Vec2(nan, 0.0)}, at(1.1));
+  referee.step({.ball_position = Vec2(4.0, 0.0), .ball_velocity = Vec2(nan, nan)}, at(1.2));
+  referee.step({.robots = {blue(1, {nan, 0.0}), blue(16, {4.0, 0.0}), blue(2, {0, 0}), blue(2, {1, 1})}},
+               at(1.3));
+  referee.step(ball_at({4.6, 0.0}), at(0.5));  // time went backwards: ignored
+  EXPECT_EQ(referee.counters().invalid_ball, 2u);
+  EXPECT_EQ(referee.counters().missing_ball, 1u);
+  EXPECT_EQ(referee.counters().invalid_robot, 1u);
+  EXPECT_EQ(referee.counters().unknown_robot_id, 1u);
+  EXPECT_EQ(referee.counters().duplicate_robot, 1u);
+  EXPECT_EQ(referee.counters().time_went_backwards, 1u);
+  EXPECT_EQ(referee.counters().observations, 4u);
+  EXPECT_EQ(referee.state().command, before.command);
+  EXPECT_EQ(referee.state().yellow.score, 0u);
+  EXPECT_EQ(referee.state().packet_referee, at(1.3));
+
+  // A robot with an unknown id next to the ball is no last toucher.
+  referee.step(ball_at({1.0, 2.8}, {blue(2, {1.0, 2.68}), yellow(20, {1.0, 2.9})}), at(2));
+  referee.step(ball_at({1.0, 3.1}), at(2.1));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow);
+
+  // Nonsense geometry is reported rather than assumed.
+  FieldGeometry broken = FieldGeometry::division_b();
+  broken.goal_width = nan;
+  EXPECT_FALSE(check_field_geometry(broken));
+  EXPECT_TRUE(check_field_geometry(FieldGeometry::division_a()));
+  EXPECT_TRUE(check_field_geometry(FieldGeometry::division_b()));
+}
+
+TEST(BuiltinReferee, TheSameInputsGiveTheSameStates) {
+  BuiltinReferee first(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  BuiltinReferee second(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  std::uint64_t seed = 12345;
+  const auto uniform = [&seed](double low, double high) {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return low + (high - low) * static_cast<double>(seed >> 11) / static_cast<double>(1ULL << 53);
+  };
+  Vec2 ball(0, 0);
+  for (int frame = 0; frame < 6000; ++frame) {
+    const Timestamp now = at(frame / 60.0);
+    if (frame % 600 == 0) {
+      const Command command = frame % 1200 == 0 ? Command::kForceStart : Command::kStop;
+      ASSERT_EQ(first.command(command, now).ok(), second.command(command, now).ok());
+    }
+    ball += Vec2(uniform(-0.08, 0.08), uniform(-0.08, 0.08));
+    if (std::abs(ball.x()) > 5.0 || std::abs(ball.y()) > 3.5) ball = Vec2(0, 0);
+    Observation observation = ball_at(ball);
+    for (std::uint32_t id = 0; id < 6; ++id) {
+      observation.robots.push_back(yellow(id, {uniform(-4.5, 4.5), uniform(-3, 3)}));
+      observation.robots.push_back(blue(id, {uniform(-4.5, 4.5), uniform(-3, 3)}));
+    }
+    first.step(observation, now);
+    second.step(observation, now);
+    ASSERT_EQ(first.state(), second.state()) << "frame " << frame;
+  }
+  EXPECT_GT(first.state().command_counter, 10u) << "the script should exercise the rules";
+}
+
+}  // namespace
+}  // namespace ssl::referee

@@ -1,0 +1,155 @@
+// The schema of a referee profile (one Fields list per section) and the name-or-path lookup. Every key is
+// required: a profile file states all its rules, so nothing changes behind the reader's back.
+#include "services/referee_gateway/builtin/profile.h"
+
+#include <algorithm>
+#include <string>
+
+#include "libs/common/deploy_files.h"
+#include "libs/config/config.h"
+
+namespace ssl::referee {
+namespace {
+
+using config::field;
+using config::Fields;
+using config::nested;
+
+constexpr std::string_view kBuiltinProfiles = "arcade, strict_ai";
+
+Fields<GoalDetectionRule> goal_detection_fields() {
+  return {
+      field("enabled", &GoalDetectionRule::enabled),
+      field("cooldown", &GoalDetectionRule::cooldown)
+          .unit("s")
+          .range(0, 60)
+          .doc("after a counted goal, further goals are ignored this long"),
+  };
+}
+
+Fields<OutOfBoundsRule> out_of_bounds_fields() {
+  return {
+      field("enabled", &OutOfBoundsRule::enabled),
+      field("ball_placement", &OutOfBoundsRule::ball_placement)
+          .doc("the free-kick team places the ball (false: STOP, the operator places it)"),
+      field("line_distance", &OutOfBoundsRule::line_distance)
+          .unit("m")
+          .range(0, 1)
+          .doc("placement point inside the touch line, and inside the goal line for a corner kick"),
+      field("goal_kick_distance", &OutOfBoundsRule::goal_kick_distance)
+          .unit("m")
+          .range(0, 3)
+          .doc("placement point inside the goal line for a goal kick"),
+  };
+}
+
+Fields<DefenseAreaRule> defense_area_fields() {
+  return {
+      field("enabled", &DefenseAreaRule::enabled),
+      field("max_defenders", &DefenseAreaRule::max_defenders)
+          .range(0, 11)
+          .doc("robots of a team, goalkeeper included, allowed entirely inside their own defense area"),
+      field("attacker_infringement", &DefenseAreaRule::attacker_infringement)
+          .doc("an attacker entirely inside, or touching the ball partly inside, the opponent's area: free "
+               "kick for the defenders"),
+  };
+}
+
+Fields<KeepOutRule> keep_out_fields() {
+  return {
+      field("enabled", &KeepOutRule::enabled),
+      field("radius", &KeepOutRule::radius)
+          .unit("m")
+          .range(0, 3)
+          .doc("distance from the ball to a robot's nearest side during STOP and opponent restarts"),
+      field("violation_persistence", &KeepOutRule::violation_persistence)
+          .unit("s")
+          .range(0, 60)
+          .doc("a robot must stay too close this long before it is a foul"),
+  };
+}
+
+Fields<RefereeRules> rules_fields() {
+  return {
+      nested("goal_detection", &RefereeRules::goal_detection, goal_detection_fields()),
+      nested("out_of_bounds", &RefereeRules::out_of_bounds, out_of_bounds_fields()),
+      nested("defense_area", &RefereeRules::defense_area, defense_area_fields()),
+      nested("keep_out", &RefereeRules::keep_out, keep_out_fields()),
+  };
+}
+
+Fields<GameSettings> game_fields() {
+  return {
+      field("half_duration", &GameSettings::half_duration)
+          .unit("s")
+          .range(1, 3600)
+          .doc("playing time per half (the clock runs only while the game runs)"),
+      field("half_time", &GameSettings::half_time).unit("s").range(0, 3600),
+      field("kickoff_team", &GameSettings::kickoff_team)
+          .values({{"yellow", TeamColor::kYellow}, {"blue", TeamColor::kBlue}})
+          .doc("kicks off the first half; the other team kicks off the second"),
+      field("force_start_after_goal", &GameSettings::force_start_after_goal)
+          .doc("after a goal: STOP, then FORCE_START after stop_duration (false: wait for the kickoff)"),
+      field("auto_continue", &GameSettings::auto_continue)
+          .doc("pending kickoffs and penalties, and their NORMAL_START, follow after stop_duration"),
+      field("stop_duration", &GameSettings::stop_duration)
+          .unit("s")
+          .range(0, 60)
+          .doc("time in STOP or preparation before an automatic continuation"),
+      field("placement_timeout", &GameSettings::placement_timeout).unit("s").range(1, 300),
+      field("placement_tolerance", &GameSettings::placement_tolerance)
+          .unit("m")
+          .range(0.01, 1)
+          .doc("ball within this distance of the target, at rest, for a successful placement"),
+  };
+}
+
+Fields<RefereeProfile> profile_fields() {
+  return Fields<RefereeProfile>{
+      field("name", &RefereeProfile::name).doc("shown to the operator"),
+      nested("rules", &RefereeProfile::rules, rules_fields()),
+      nested("game", &RefereeProfile::game, game_fields()),
+  }
+      .check([](const RefereeProfile& profile) -> Status {
+        if (profile.name.empty()) return Error{"key 'name' must not be empty"};
+        return Status::success();
+      });
+}
+
+bool looks_like_path(std::string_view text) {
+  return text.find('/') != std::string_view::npos || text.ends_with(".yaml") || text.ends_with(".yml");
+}
+
+bool is_profile_name(std::string_view text) {
+  return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+  });
+}
+
+}  // namespace
+
+Result<RefereeProfile> load_referee_profile(std::string_view name_or_path) {
+  if (looks_like_path(name_or_path)) return config::load_file(std::string(name_or_path), profile_fields());
+  if (!is_profile_name(name_or_path)) {
+    return Error{"referee profile '" + std::string(name_or_path) +
+                 "' is neither a profile name (letters, digits, _ and -) nor a .yaml path"};
+  }
+  Result<std::string> file =
+      find_deploy_file("config/referee_profiles/" + std::string(name_or_path) + ".yaml");
+  if (!file) {
+    return Error{"unknown referee profile '" + std::string(name_or_path) +
+                 "' (built-in: " + std::string(kBuiltinProfiles) +
+                 "; or give the path of a .yaml file): " + file.error().message};
+  }
+  return config::load_file(*file, profile_fields());
+}
+
+Result<RefereeProfile> load_referee_profile_from_string(std::string_view yaml, std::string_view source) {
+  return config::load_string(yaml, profile_fields(), source);
+}
+
+std::string referee_profile_yaml(const RefereeProfile& profile) {
+  return config::to_yaml(profile, profile_fields());
+}
+
+}  // namespace ssl::referee

@@ -1,0 +1,89 @@
+// RefereeProfile: which rules the built-in referee enforces and how a match is timed, loaded once from a
+// YAML file (deploy/config/referee_profiles/<name>.yaml) and validated by the typed config library, so
+// that every error names its key. The profile holds rules and game settings only; field dimensions
+// belong to the division and are given to the referee separately (FieldGeometry in builtin_referee.h).
+//
+// Built-in profiles:
+//   * arcade    - goal detection only; after a goal STOP, then FORCE_START by itself after
+//                 game.stop_duration; every pending kickoff and its NORMAL_START also continue by
+//                 themselves (game.auto_continue), so an AI-vs-AI match runs without an operator.
+//   * strict_ai - goal, out of bounds (with ball placement), defense area and keep-out; after a goal the
+//                 referee stays in STOP and names the kickoff in next_command; the operator issues it.
+//                 Free kicks after a successful placement or a foul still follow by themselves.
+//
+// Units: metres and seconds throughout (durations are plain doubles in seconds, as in every config file).
+//
+//   ssl::Result<RefereeProfile> profile = load_referee_profile("strict_ai");   // or "path/to/mine.yaml"
+//   if (!profile) fail(profile.error().message);  // e.g. "...mine.yaml:7: key 'rules.keep_out.radius': ..."
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "libs/common/result.h"
+#include "libs/common/team.h"
+
+namespace ssl::referee {
+
+struct GoalDetectionRule {
+  bool enabled = false;
+  double cooldown = 0;  // s after a counted goal during which further goals are ignored
+};
+
+struct OutOfBoundsRule {
+  bool enabled = false;
+  bool ball_placement = false;  // true: the free-kick team places the ball; false: STOP, operator places it
+  double line_distance = 0;  // m inside the touch line (throw-in, corner, goal kick) and goal line (corner)
+  double goal_kick_distance = 0;  // m inside the goal line for a goal kick (1.0 per rules)
+};
+
+struct DefenseAreaRule {
+  bool enabled = false;
+  std::uint32_t max_defenders = 0;     // robots of a team (goalkeeper included) allowed in their own area
+  bool attacker_infringement = false;  // an attacker in the opponent's area is a foul (free kick defenders)
+};
+
+struct KeepOutRule {
+  bool enabled = false;
+  double radius = 0;                 // m from the ball to the robot's nearest side (0.5 per rules)
+  double violation_persistence = 0;  // s a robot must stay too close before it is a foul
+};
+
+struct RefereeRules {
+  GoalDetectionRule goal_detection;
+  OutOfBoundsRule out_of_bounds;
+  DefenseAreaRule defense_area;
+  KeepOutRule keep_out;
+};
+
+struct GameSettings {
+  double half_duration = 0;                     // s of playing time per half
+  double half_time = 0;                         // s of half-time break
+  TeamColor kickoff_team = TeamColor::kYellow;  // kicks off the first half; the other team the second
+  bool force_start_after_goal = false;          // after a goal: STOP, then FORCE_START after stop_duration
+  bool auto_continue = false;                   // pending kickoffs / penalties continue without the operator
+  double stop_duration = 0;                     // s in STOP (or preparing) before an automatic continuation
+  double placement_timeout = 0;                 // s a team has to place the ball (30 per rules)
+  double placement_tolerance = 0;               // m between ball and target for a successful placement (0.15)
+};
+
+struct RefereeProfile {
+  std::string name;
+  RefereeRules rules;
+  GameSettings game;
+};
+
+/// Loads a profile. `name_or_path` is either the name of a built-in profile ("arcade", "strict_ai": any
+/// deploy/config/referee_profiles/<name>.yaml, found with find_deploy_file) or the path of a YAML file
+/// (anything containing '/' or ending in .yaml / .yml). Errors name the file and key, or list the
+/// built-in names for an unknown one.
+Result<RefereeProfile> load_referee_profile(std::string_view name_or_path);
+
+/// Loads a profile from YAML text; `source` names it in errors.
+Result<RefereeProfile> load_referee_profile_from_string(std::string_view yaml, std::string_view source);
+
+/// The profile as YAML, in schema order with units and docs as comments (loads back to an equal profile).
+std::string referee_profile_yaml(const RefereeProfile& profile);
+
+}  // namespace ssl::referee

@@ -1,0 +1,118 @@
+// Referee profiles: both built-ins load with the settings their documentation promises, a file path
+// works, mistakes are reported with the key named, and unknown names list the built-in ones.
+#include "services/referee_gateway/builtin/profile.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace ssl::referee {
+namespace {
+
+std::string write_temp_file(const std::string& file_name, const std::string& text) {
+  const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / file_name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(RefereeProfile, ArcadeDetectsGoalsOnlyAndForceStartsAfterTwoSeconds) {
+  auto profile = load_referee_profile("arcade");
+  ASSERT_TRUE(profile) << profile.error().message;
+  EXPECT_EQ(profile->name, "arcade");
+  EXPECT_TRUE(profile->rules.goal_detection.enabled);
+  EXPECT_FALSE(profile->rules.out_of_bounds.enabled);
+  EXPECT_FALSE(profile->rules.defense_area.enabled);
+  EXPECT_FALSE(profile->rules.keep_out.enabled);
+  EXPECT_TRUE(profile->game.force_start_after_goal);
+  EXPECT_TRUE(profile->game.auto_continue);
+  EXPECT_DOUBLE_EQ(profile->game.stop_duration, 2.0);
+}
+
+TEST(RefereeProfile, StrictAiEnablesAllFourRulesAndWaitsForTheOperatorAfterAGoal) {
+  auto profile = load_referee_profile("strict_ai");
+  ASSERT_TRUE(profile) << profile.error().message;
+  EXPECT_EQ(profile->name, "strict_ai");
+  EXPECT_TRUE(profile->rules.goal_detection.enabled);
+  EXPECT_TRUE(profile->rules.out_of_bounds.enabled);
+  EXPECT_TRUE(profile->rules.out_of_bounds.ball_placement);
+  EXPECT_DOUBLE_EQ(profile->rules.out_of_bounds.line_distance, 0.2);
+  EXPECT_DOUBLE_EQ(profile->rules.out_of_bounds.goal_kick_distance, 1.0);
+  EXPECT_TRUE(profile->rules.defense_area.enabled);
+  EXPECT_EQ(profile->rules.defense_area.max_defenders, 1u);
+  EXPECT_TRUE(profile->rules.defense_area.attacker_infringement);
+  EXPECT_TRUE(profile->rules.keep_out.enabled);
+  EXPECT_DOUBLE_EQ(profile->rules.keep_out.radius, 0.5);
+  EXPECT_DOUBLE_EQ(profile->rules.keep_out.violation_persistence, 2.0);
+  EXPECT_FALSE(profile->game.force_start_after_goal);
+  EXPECT_FALSE(profile->game.auto_continue);
+  EXPECT_DOUBLE_EQ(profile->game.placement_timeout, 30.0);
+  EXPECT_DOUBLE_EQ(profile->game.placement_tolerance, 0.15);
+  EXPECT_DOUBLE_EQ(profile->game.half_duration, 300.0);
+  EXPECT_EQ(profile->game.kickoff_team, TeamColor::kYellow);
+}
+
+TEST(RefereeProfile, APathLoadsAndThePrintedYamlLoadsBackEqual) {
+  auto strict = load_referee_profile("strict_ai");
+  ASSERT_TRUE(strict) << strict.error().message;
+  std::string yaml = referee_profile_yaml(*strict);
+  const std::string path = write_temp_file("referee_profile_roundtrip.yaml", yaml);
+  auto reloaded = load_referee_profile(path);
+  ASSERT_TRUE(reloaded) << reloaded.error().message;
+  EXPECT_EQ(referee_profile_yaml(*reloaded), yaml);
+  EXPECT_EQ(reloaded->game.kickoff_team, TeamColor::kYellow);
+}
+
+TEST(RefereeProfile, AnOutOfRangeValueNamesItsKey) {
+  auto strict = load_referee_profile("strict_ai");
+  ASSERT_TRUE(strict) << strict.error().message;
+  std::string yaml = referee_profile_yaml(*strict);
+  const std::string original = "radius: 0.5";
+  const std::size_t at = yaml.find(original);
+  ASSERT_NE(at, std::string::npos) << yaml;
+  yaml.replace(at, original.size(), "radius: -4");
+  auto loaded = load_referee_profile(write_temp_file("referee_profile_bad_radius.yaml", yaml));
+  ASSERT_FALSE(loaded);
+  EXPECT_NE(loaded.error().message.find("rules.keep_out.radius"), std::string::npos)
+      << loaded.error().message;
+  EXPECT_NE(loaded.error().message.find("referee_profile_bad_radius.yaml"), std::string::npos)
+      << loaded.error().message;
+}
+
+TEST(RefereeProfile, AMissingKeyAndABadKickoffTeamAreBothNamed) {
+  const std::string yaml = R"(name: mine
+rules:
+  goal_detection: {enabled: true, cooldown: 1.0}
+  out_of_bounds: {enabled: false, ball_placement: false, line_distance: 0.2, goal_kick_distance: 1.0}
+  defense_area: {enabled: false, max_defenders: 1, attacker_infringement: false}
+  keep_out: {enabled: false, radius: 0.5}
+game:
+  half_duration: 300
+  half_time: 300
+  kickoff_team: green
+  force_start_after_goal: true
+  auto_continue: true
+  stop_duration: 2
+  placement_timeout: 30
+  placement_tolerance: 0.15
+)";
+  auto loaded = load_referee_profile_from_string(yaml, "mine.yaml");
+  ASSERT_FALSE(loaded);
+  const std::string& message = loaded.error().message;
+  EXPECT_NE(message.find("rules.keep_out.violation_persistence"), std::string::npos) << message;
+  EXPECT_NE(message.find("game.kickoff_team"), std::string::npos) << message;
+}
+
+TEST(RefereeProfile, AnUnknownNameListsTheBuiltInProfiles) {
+  auto loaded = load_referee_profile("no_such_profile");
+  ASSERT_FALSE(loaded);
+  EXPECT_NE(loaded.error().message.find("unknown referee profile 'no_such_profile'"), std::string::npos)
+      << loaded.error().message;
+  EXPECT_NE(loaded.error().message.find("arcade, strict_ai"), std::string::npos) << loaded.error().message;
+  EXPECT_FALSE(load_referee_profile("../secrets"));
+  EXPECT_FALSE(load_referee_profile("/no/such/file.yaml"));
+}
+
+}  // namespace
+}  // namespace ssl::referee
