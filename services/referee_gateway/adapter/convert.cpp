@@ -1,10 +1,15 @@
 #include "services/referee_gateway/adapter/convert.h"
 
+#include <algorithm>
+#include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <system_error>
 
 namespace ssl::referee {
 namespace {
@@ -527,6 +532,558 @@ bool fill_payload(const ::GameEvent& in, GameEvent& e) {
   return true;
 }
 
+// ---------------------------------------------------------------------------------------------------------
+// Core -> wire (to_proto): the inverse of the decoding above.
+
+constexpr double kMaxFloat = std::numeric_limits<float>::max();
+
+/// A double for a float field of the wire, saturating at +-FLT_MAX (the caller has dropped NaN).
+float saturated_float(double value) { return static_cast<float>(std::clamp(value, -kMaxFloat, kMaxFloat)); }
+
+/// Duration -> µs, truncated toward zero (always in range: ns / 1000).
+std::int64_t to_micros(time::Duration duration) {
+  return std::chrono::duration_cast<std::chrono::microseconds>(duration).count();
+}
+
+/// Duration -> µs for the uint32 fields, saturating at 0 and 2^32 - 1 µs.
+std::uint32_t to_uint32_micros(time::Duration duration) {
+  constexpr std::int64_t kMax = std::numeric_limits<std::uint32_t>::max();
+  return static_cast<std::uint32_t>(std::clamp<std::int64_t>(to_micros(duration), 0, kMax));
+}
+
+/// Timestamp -> Unix µs (uint64), truncated; times before the epoch saturate at 0.
+std::uint64_t to_unix_micros(time::Timestamp t) {
+  return t.nanoseconds() < 0 ? 0 : static_cast<std::uint64_t>(t.microseconds());
+}
+
+/// A number slot for a float field; nullopt (not sent) when absent, NaN or infinite.
+std::optional<float> wire_float(const std::optional<double>& slot) {
+  if (!slot || !std::isfinite(*slot)) return std::nullopt;
+  return saturated_float(*slot);
+}
+
+/// A location slot (m) for a Vector2 field (m); nullopt (not sent) when absent or not finite.
+std::optional<::Vector2> wire_location(const std::optional<Vec2>& slot) {
+  if (!slot || !std::isfinite(slot->x()) || !std::isfinite(slot->y())) return std::nullopt;
+  ::Vector2 point;
+  point.set_x(saturated_float(slot->x()));
+  point.set_y(saturated_float(slot->y()));
+  return point;
+}
+
+// The core enums below have the league's values; a value outside the enum becomes the league's default.
+
+::Team wire_team(Team team) {
+  const int value = static_cast<int>(team);
+  return ::Team_IsValid(value) ? static_cast<::Team>(value) : ::UNKNOWN;
+}
+
+::Referee::Command wire_command(Command command) {
+  const int value = static_cast<int>(command);
+  return ::Referee::Command_IsValid(value) ? static_cast<::Referee::Command>(value) : ::Referee::HALT;
+}
+
+::Referee::Stage wire_stage(Stage stage) {
+  const int value = static_cast<int>(stage);
+  return ::Referee::Stage_IsValid(value) ? static_cast<::Referee::Stage>(value)
+                                         : ::Referee::NORMAL_FIRST_HALF_PRE;
+}
+
+::MatchType wire_match_type(MatchType type) {
+  const int value = static_cast<int>(type);
+  return ::MatchType_IsValid(value) ? static_cast<::MatchType>(value) : ::UNKNOWN_MATCH;
+}
+
+::HullColor wire_hull_color(HullColor color) {
+  const int value = static_cast<int>(color);
+  return ::HullColor_IsValid(value) ? static_cast<::HullColor>(value) : ::HULL_COLOR_UNKNOWN;
+}
+
+/// Removes `literal` from the front of `text`; false (text unchanged) when `text` does not start with it.
+bool consume(std::string_view& text, std::string_view literal) {
+  if (!text.starts_with(literal)) return false;
+  text.remove_prefix(literal.size());
+  return true;
+}
+
+/// Reads a decimal int32 from the front of `text`; false when there is none or it is out of range.
+bool consume_int(std::string_view& text, std::int32_t& value) {
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc{}) return false;
+  text.remove_prefix(static_cast<std::size_t>(end - text.data()));
+  return true;
+}
+
+// One filler per payload message, the inverse of the fill() above: slots -> payload fields. Every
+// `required` field is set.
+
+void fill_wire(const GameEvent& e, Pb::BallLeftField& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+}
+
+void fill_wire(const GameEvent& e, Pb::AimlessKick& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto loc = wire_location(e.secondary_location)) *p.mutable_kick_location() = *loc;
+}
+
+void fill_wire(const GameEvent& e, Pb::Goal& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_kicking_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto loc = wire_location(e.secondary_location)) *p.mutable_kick_location() = *loc;
+  if (auto height = wire_float(e.value)) p.set_max_ball_height(*height);
+  if (!e.text.empty()) p.set_message(e.text);
+}
+
+void fill_wire(const GameEvent& e, Pb::IndirectGoal& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto loc = wire_location(e.secondary_location)) *p.mutable_kick_location() = *loc;
+}
+
+void fill_wire(const GameEvent& e, Pb::ChippedGoal& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto loc = wire_location(e.secondary_location)) *p.mutable_kick_location() = *loc;
+  if (auto height = wire_float(e.value)) p.set_max_ball_height(*height);
+}
+
+void fill_wire(const GameEvent& e, Pb::BotTooFastInStop& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto speed = wire_float(e.value)) p.set_speed(*speed);
+}
+
+void fill_wire(const GameEvent& e, Pb::DefenderTooCloseToKickPoint& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto distance = wire_float(e.value)) p.set_distance(*distance);
+}
+
+void fill_wire(const GameEvent& e, Pb::BotCrashDrawn& p) {  // no by_team on the wire
+  if (e.by_bot) p.set_bot_yellow(*e.by_bot);
+  if (e.other_bot) p.set_bot_blue(*e.other_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto speed = wire_float(e.value)) p.set_crash_speed(*speed);
+}
+
+void fill_wire(const GameEvent& e, Pb::BotCrashUnique& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_violator(*e.by_bot);
+  if (e.other_bot) p.set_victim(*e.other_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto speed = wire_float(e.value)) p.set_crash_speed(*speed);
+}
+
+void fill_wire(const GameEvent& e, Pb::BotPushedBot& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_violator(*e.by_bot);
+  if (e.other_bot) p.set_victim(*e.other_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto distance = wire_float(e.value)) p.set_pushed_distance(*distance);
+}
+
+void fill_wire(const GameEvent& e, Pb::BotTippedOver& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto loc = wire_location(e.secondary_location)) *p.mutable_ball_location() = *loc;
+}
+
+void fill_wire(const GameEvent& e, Pb::BotDroppedParts& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto loc = wire_location(e.secondary_location)) *p.mutable_ball_location() = *loc;
+}
+
+void fill_wire(const GameEvent& e, Pb::DefenderInDefenseArea& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto distance = wire_float(e.value)) p.set_distance(*distance);
+}
+
+void fill_wire(const GameEvent& e, Pb::DefenderInDefenseAreaPartially& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto loc = wire_location(e.secondary_location)) *p.mutable_ball_location() = *loc;
+  if (auto distance = wire_float(e.value)) p.set_distance(*distance);
+}
+
+void fill_wire(const GameEvent& e, Pb::AttackerTouchedBallInDefenseArea& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto distance = wire_float(e.value)) p.set_distance(*distance);
+}
+
+void fill_wire(const GameEvent& e, Pb::BotKickedBallTooFast& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto speed = wire_float(e.value)) p.set_initial_ball_speed(*speed);
+  p.set_chipped(e.text == "chipped");
+}
+
+void fill_wire(const GameEvent& e, Pb::BotDribbledBallTooFar& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto start = wire_location(e.location)) *p.mutable_start() = *start;
+  if (auto end = wire_location(e.secondary_location)) *p.mutable_end() = *end;
+}
+
+void fill_wire(const GameEvent& e, Pb::AttackerTouchedOpponentInDefenseArea& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (e.other_bot) p.set_victim(*e.other_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+}
+
+void fill_wire(const GameEvent& e, Pb::AttackerDoubleTouchedBall& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+}
+
+void fill_wire(const GameEvent& e, Pb::AttackerTooCloseToDefenseArea& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto loc = wire_location(e.secondary_location)) *p.mutable_ball_location() = *loc;
+  if (auto distance = wire_float(e.value)) p.set_distance(*distance);
+}
+
+void fill_wire(const GameEvent& e, Pb::BotHeldBallDeliberately& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto duration = wire_float(e.value)) p.set_duration(*duration);
+}
+
+void fill_wire(const GameEvent& e, Pb::BotInterferedPlacement& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (e.by_bot) p.set_by_bot(*e.by_bot);
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+}
+
+void fill_wire(const GameEvent& e, Pb::MultipleCards& p) { p.set_by_team(wire_team(e.by_team)); }
+
+/// text "caused by: A, B" -> one caused event per known league type name (its oneof member, `type` and
+/// this event's by_team; the caused events' own slots are not carried).
+void fill_wire(const GameEvent& e, Pb::MultipleFouls& p) {
+  p.set_by_team(wire_team(e.by_team));
+  std::string_view names = e.text;
+  if (!consume(names, "caused by: ")) return;
+  while (!names.empty()) {
+    const std::size_t separator = names.find(", ");
+    if (const auto caused_type = parse_game_event_type(names.substr(0, separator))) {
+      GameEvent caused;
+      caused.type = *caused_type;
+      caused.by_team = e.by_team;
+      *p.add_caused_game_events() = to_proto(caused);
+    }
+    if (separator == std::string_view::npos) break;
+    names.remove_prefix(separator + 2);
+  }
+}
+
+void fill_wire(const GameEvent& e, Pb::MultiplePlacementFailures& p) { p.set_by_team(wire_team(e.by_team)); }
+
+void fill_wire(const GameEvent& e, Pb::KickTimeout& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto time_s = wire_float(e.value)) p.set_time(*time_s);
+}
+
+void fill_wire(const GameEvent& e, Pb::NoProgressInGame& p) {  // no by_team on the wire
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto time_s = wire_float(e.value)) p.set_time(*time_s);
+}
+
+void fill_wire(const GameEvent& e, Pb::PlacementFailed& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (auto distance = wire_float(e.value)) p.set_remaining_distance(*distance);
+}
+
+void fill_wire(const GameEvent& e, Pb::UnsportingBehaviorMinor& p) {
+  p.set_by_team(wire_team(e.by_team));
+  p.set_reason(e.text);  // required
+}
+
+void fill_wire(const GameEvent& e, Pb::UnsportingBehaviorMajor& p) {
+  p.set_by_team(wire_team(e.by_team));
+  p.set_reason(e.text);  // required
+}
+
+void fill_wire(const GameEvent& e, Pb::KeeperHeldBall& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (auto duration = wire_float(e.value)) p.set_duration(*duration);
+}
+
+void fill_wire(const GameEvent& e, Pb::PlacementSucceeded& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (auto time_taken = wire_float(e.value)) p.set_time_taken(*time_taken);
+}
+
+void fill_wire(const GameEvent& e, Pb::Prepared& p) {  // no by_team on the wire
+  if (auto time_taken = wire_float(e.value)) p.set_time_taken(*time_taken);
+}
+
+void fill_wire(const GameEvent& e, Pb::BotSubstitution& p) { p.set_by_team(wire_team(e.by_team)); }
+void fill_wire(const GameEvent& e, Pb::ExcessiveBotSubstitution& p) { p.set_by_team(wire_team(e.by_team)); }
+void fill_wire(const GameEvent& e, Pb::ChallengeFlag& p) { p.set_by_team(wire_team(e.by_team)); }
+void fill_wire(const GameEvent& e, Pb::EmergencyStop& p) { p.set_by_team(wire_team(e.by_team)); }
+
+void fill_wire(const GameEvent& e, Pb::ChallengeFlagHandled& p) {
+  p.set_by_team(wire_team(e.by_team));
+  p.set_accepted(e.text == "accepted");  // required
+}
+
+/// text "<n> on field, <m> allowed" -> the two counts; other text is not sent.
+void fill_wire(const GameEvent& e, Pb::TooManyRobots& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (auto loc = wire_location(e.secondary_location)) *p.mutable_ball_location() = *loc;
+  std::string_view text = e.text;
+  std::int32_t on_field = 0;
+  std::int32_t allowed = 0;
+  if (consume_int(text, on_field) && consume(text, " on field, ") && consume_int(text, allowed) &&
+      consume(text, " allowed") && text.empty()) {
+    p.set_num_robots_on_field(on_field);
+    p.set_num_robots_allowed(allowed);
+  }
+}
+
+void fill_wire(const GameEvent& e, Pb::BoundaryCrossing& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+}
+
+void fill_wire(const GameEvent& e, Pb::PenaltyKickFailed& p) {
+  p.set_by_team(wire_team(e.by_team));
+  if (auto loc = wire_location(e.location)) *p.mutable_location() = *loc;
+  if (!e.text.empty()) p.set_reason(e.text);
+}
+
+/// The league `type` and the oneof member (with its payload) of one event. The Type constants are the
+/// league's numbers, which differ from the oneof field numbers for several events.
+void set_payload(const GameEvent& e, ::GameEvent& out) {
+  using T = GameEventType;
+  out.set_type(Pb::UNKNOWN_GAME_EVENT_TYPE);  // kUnknown and values outside the enum: no oneof member
+  switch (e.type) {
+    case T::kUnknown: break;
+    case T::kBallLeftFieldTouchLine:
+      out.set_type(Pb::BALL_LEFT_FIELD_TOUCH_LINE);
+      fill_wire(e, *out.mutable_ball_left_field_touch_line());
+      break;
+    case T::kBallLeftFieldGoalLine:
+      out.set_type(Pb::BALL_LEFT_FIELD_GOAL_LINE);
+      fill_wire(e, *out.mutable_ball_left_field_goal_line());
+      break;
+    case T::kAimlessKick:
+      out.set_type(Pb::AIMLESS_KICK);
+      fill_wire(e, *out.mutable_aimless_kick());
+      break;
+    case T::kAttackerTooCloseToDefenseArea:
+      out.set_type(Pb::ATTACKER_TOO_CLOSE_TO_DEFENSE_AREA);
+      fill_wire(e, *out.mutable_attacker_too_close_to_defense_area());
+      break;
+    case T::kDefenderInDefenseArea:
+      out.set_type(Pb::DEFENDER_IN_DEFENSE_AREA);
+      fill_wire(e, *out.mutable_defender_in_defense_area());
+      break;
+    case T::kBoundaryCrossing:
+      out.set_type(Pb::BOUNDARY_CROSSING);
+      fill_wire(e, *out.mutable_boundary_crossing());
+      break;
+    case T::kKeeperHeldBall:
+      out.set_type(Pb::KEEPER_HELD_BALL);
+      fill_wire(e, *out.mutable_keeper_held_ball());
+      break;
+    case T::kBotDribbledBallTooFar:
+      out.set_type(Pb::BOT_DRIBBLED_BALL_TOO_FAR);
+      fill_wire(e, *out.mutable_bot_dribbled_ball_too_far());
+      break;
+    case T::kBotPushedBot:
+      out.set_type(Pb::BOT_PUSHED_BOT);
+      fill_wire(e, *out.mutable_bot_pushed_bot());
+      break;
+    case T::kBotHeldBallDeliberately:
+      out.set_type(Pb::BOT_HELD_BALL_DELIBERATELY);
+      fill_wire(e, *out.mutable_bot_held_ball_deliberately());
+      break;
+    case T::kBotTippedOver:
+      out.set_type(Pb::BOT_TIPPED_OVER);
+      fill_wire(e, *out.mutable_bot_tipped_over());
+      break;
+    case T::kBotDroppedParts:
+      out.set_type(Pb::BOT_DROPPED_PARTS);
+      fill_wire(e, *out.mutable_bot_dropped_parts());
+      break;
+    case T::kAttackerTouchedBallInDefenseArea:
+      out.set_type(Pb::ATTACKER_TOUCHED_BALL_IN_DEFENSE_AREA);
+      fill_wire(e, *out.mutable_attacker_touched_ball_in_defense_area());
+      break;
+    case T::kBotKickedBallTooFast:
+      out.set_type(Pb::BOT_KICKED_BALL_TOO_FAST);
+      fill_wire(e, *out.mutable_bot_kicked_ball_too_fast());
+      break;
+    case T::kBotCrashUnique:
+      out.set_type(Pb::BOT_CRASH_UNIQUE);
+      fill_wire(e, *out.mutable_bot_crash_unique());
+      break;
+    case T::kBotCrashDrawn:
+      out.set_type(Pb::BOT_CRASH_DRAWN);
+      fill_wire(e, *out.mutable_bot_crash_drawn());
+      break;
+    case T::kDefenderTooCloseToKickPoint:
+      out.set_type(Pb::DEFENDER_TOO_CLOSE_TO_KICK_POINT);
+      fill_wire(e, *out.mutable_defender_too_close_to_kick_point());
+      break;
+    case T::kBotTooFastInStop:
+      out.set_type(Pb::BOT_TOO_FAST_IN_STOP);
+      fill_wire(e, *out.mutable_bot_too_fast_in_stop());
+      break;
+    case T::kBotInterferedPlacement:
+      out.set_type(Pb::BOT_INTERFERED_PLACEMENT);
+      fill_wire(e, *out.mutable_bot_interfered_placement());
+      break;
+    case T::kExcessiveBotSubstitution:
+      out.set_type(Pb::EXCESSIVE_BOT_SUBSTITUTION);
+      fill_wire(e, *out.mutable_excessive_bot_substitution());
+      break;
+    case T::kPossibleGoal:
+      out.set_type(Pb::POSSIBLE_GOAL);
+      fill_wire(e, *out.mutable_possible_goal());
+      break;
+    case T::kGoal:
+      out.set_type(Pb::GOAL);
+      fill_wire(e, *out.mutable_goal());
+      break;
+    case T::kInvalidGoal:
+      out.set_type(Pb::INVALID_GOAL);
+      fill_wire(e, *out.mutable_invalid_goal());
+      break;
+    case T::kAttackerDoubleTouchedBall:
+      out.set_type(Pb::ATTACKER_DOUBLE_TOUCHED_BALL);
+      fill_wire(e, *out.mutable_attacker_double_touched_ball());
+      break;
+    case T::kPlacementSucceeded:
+      out.set_type(Pb::PLACEMENT_SUCCEEDED);
+      fill_wire(e, *out.mutable_placement_succeeded());
+      break;
+    case T::kPenaltyKickFailed:
+      out.set_type(Pb::PENALTY_KICK_FAILED);
+      fill_wire(e, *out.mutable_penalty_kick_failed());
+      break;
+    case T::kNoProgressInGame:
+      out.set_type(Pb::NO_PROGRESS_IN_GAME);
+      fill_wire(e, *out.mutable_no_progress_in_game());
+      break;
+    case T::kPlacementFailed:
+      out.set_type(Pb::PLACEMENT_FAILED);
+      fill_wire(e, *out.mutable_placement_failed());
+      break;
+    case T::kMultipleCards:
+      out.set_type(Pb::MULTIPLE_CARDS);
+      fill_wire(e, *out.mutable_multiple_cards());
+      break;
+    case T::kMultipleFouls:
+      out.set_type(Pb::MULTIPLE_FOULS);
+      fill_wire(e, *out.mutable_multiple_fouls());
+      break;
+    case T::kBotSubstitution:
+      out.set_type(Pb::BOT_SUBSTITUTION);
+      fill_wire(e, *out.mutable_bot_substitution());
+      break;
+    case T::kTooManyRobots:
+      out.set_type(Pb::TOO_MANY_ROBOTS);
+      fill_wire(e, *out.mutable_too_many_robots());
+      break;
+    case T::kChallengeFlag:
+      out.set_type(Pb::CHALLENGE_FLAG);
+      fill_wire(e, *out.mutable_challenge_flag());
+      break;
+    case T::kChallengeFlagHandled:
+      out.set_type(Pb::CHALLENGE_FLAG_HANDLED);
+      fill_wire(e, *out.mutable_challenge_flag_handled());
+      break;
+    case T::kEmergencyStop:
+      out.set_type(Pb::EMERGENCY_STOP);
+      fill_wire(e, *out.mutable_emergency_stop());
+      break;
+    case T::kUnsportingBehaviorMinor:
+      out.set_type(Pb::UNSPORTING_BEHAVIOR_MINOR);
+      fill_wire(e, *out.mutable_unsporting_behavior_minor());
+      break;
+    case T::kUnsportingBehaviorMajor:
+      out.set_type(Pb::UNSPORTING_BEHAVIOR_MAJOR);
+      fill_wire(e, *out.mutable_unsporting_behavior_major());
+      break;
+    case T::kPrepared:
+      out.set_type(Pb::PREPARED);
+      fill_wire(e, *out.mutable_prepared());
+      break;
+    case T::kIndirectGoal:
+      out.set_type(Pb::INDIRECT_GOAL);
+      fill_wire(e, *out.mutable_indirect_goal());
+      break;
+    case T::kChippedGoal:
+      out.set_type(Pb::CHIPPED_GOAL);
+      fill_wire(e, *out.mutable_chipped_goal());
+      break;
+    case T::kKickTimeout:
+      out.set_type(Pb::KICK_TIMEOUT);
+      fill_wire(e, *out.mutable_kick_timeout());
+      break;
+    case T::kAttackerTouchedOpponentInDefenseArea:
+      out.set_type(Pb::ATTACKER_TOUCHED_OPPONENT_IN_DEFENSE_AREA);
+      fill_wire(e, *out.mutable_attacker_touched_opponent_in_defense_area());
+      break;
+    case T::kAttackerTouchedOpponentInDefenseAreaSkipped:
+      out.set_type(Pb::ATTACKER_TOUCHED_OPPONENT_IN_DEFENSE_AREA_SKIPPED);
+      fill_wire(e, *out.mutable_attacker_touched_opponent_in_defense_area_skipped());
+      break;
+    case T::kBotCrashUniqueSkipped:
+      out.set_type(Pb::BOT_CRASH_UNIQUE_SKIPPED);
+      fill_wire(e, *out.mutable_bot_crash_unique_skipped());
+      break;
+    case T::kBotPushedBotSkipped:
+      out.set_type(Pb::BOT_PUSHED_BOT_SKIPPED);
+      fill_wire(e, *out.mutable_bot_pushed_bot_skipped());
+      break;
+    case T::kDefenderInDefenseAreaPartially:
+      out.set_type(Pb::DEFENDER_IN_DEFENSE_AREA_PARTIALLY);
+      fill_wire(e, *out.mutable_defender_in_defense_area_partially());
+      break;
+    case T::kMultiplePlacementFailures:
+      out.set_type(Pb::MULTIPLE_PLACEMENT_FAILURES);
+      fill_wire(e, *out.mutable_multiple_placement_failures());
+      break;
+  }
+}
+
+::GameEventProposalGroup proposal_group_to_proto(const GameEventProposal& proposal) {
+  ::GameEventProposalGroup out;
+  if (!proposal.id.empty()) out.set_id(proposal.id);
+  for (const auto& event : proposal.events) *out.add_game_events() = to_proto(event);
+  out.set_accepted(proposal.accepted);
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Core -> IDL
+
 idl::common::Vec2 to_idl(const Vec2& v) {
   idl::common::Vec2 out;
   out.x(v.x());
@@ -620,6 +1177,69 @@ RefereeState from_proto(const ::Referee& packet, time::Timestamp receive_wall, R
     out.current_action_time_remaining = micros(packet.current_action_time_remaining());
   }
   out.status_message = packet.status_message();
+  return out;
+}
+
+::GameEvent to_proto(const GameEvent& event) {
+  ::GameEvent out;
+  if (!event.id.empty()) out.set_id(event.id);
+  for (const auto& origin : event.origins) out.add_origin(origin);
+  if (event.created_referee) out.set_created_timestamp(to_unix_micros(*event.created_referee));
+  set_payload(event, out);
+  return out;
+}
+
+::Referee::TeamInfo to_proto(const TeamInfo& team) {
+  ::Referee::TeamInfo out;
+  out.set_name(team.name);
+  out.set_score(team.score);
+  out.set_red_cards(team.red_cards);
+  for (const auto& left : team.yellow_card_times_left) out.add_yellow_card_times(to_uint32_micros(left));
+  out.set_yellow_cards(team.yellow_cards);
+  out.set_timeouts(team.timeouts);
+  out.set_timeout_time(to_uint32_micros(team.timeout_time_left));
+  out.set_goalkeeper(team.goalkeeper);
+  out.set_foul_counter(team.foul_counter);
+  out.set_ball_placement_failures(team.ball_placement_failures);
+  out.set_can_place_ball(team.can_place_ball);
+  out.set_max_allowed_bots(team.max_allowed_bots);
+  out.set_bot_substitution_intent(team.bot_substitution_intent);
+  out.set_ball_placement_failures_reached(team.ball_placement_failures_reached);
+  out.set_bot_substitution_allowed(team.bot_substitution_allowed);
+  out.set_bot_substitutions_left(team.bot_substitutions_left);
+  out.set_bot_substitution_time_left(to_uint32_micros(team.bot_substitution_time_left));
+  out.set_hull_color(wire_hull_color(team.hull_color));
+  return out;
+}
+
+::Referee to_proto(const RefereeState& state) {
+  ::Referee out;
+  if (!state.source_identifier.empty()) out.set_source_identifier(state.source_identifier);
+  out.set_match_type(wire_match_type(state.match_type));
+  out.set_packet_timestamp(to_unix_micros(state.packet_referee));
+  out.set_stage(wire_stage(state.stage));
+  if (state.stage_time_left) out.set_stage_time_left(to_micros(*state.stage_time_left));
+  out.set_command(wire_command(state.command));
+  out.set_command_counter(state.command_counter);
+  out.set_command_timestamp(to_unix_micros(state.command_referee));
+  *out.mutable_yellow() = to_proto(state.yellow);
+  *out.mutable_blue() = to_proto(state.blue);
+  if (state.designated_position && std::isfinite(state.designated_position->x()) &&
+      std::isfinite(state.designated_position->y())) {
+    auto* point = out.mutable_designated_position();
+    point->set_x(saturated_float(state.designated_position->x() * 1000.0));  // m -> mm
+    point->set_y(saturated_float(state.designated_position->y() * 1000.0));
+  }
+  if (state.blue_team_on_positive_half) out.set_blue_team_on_positive_half(*state.blue_team_on_positive_half);
+  if (state.next_command) out.set_next_command(wire_command(*state.next_command));
+  for (const auto& event : state.game_events) *out.add_game_events() = to_proto(event);
+  for (const auto& proposal : state.game_event_proposals) {
+    *out.add_game_event_proposals() = proposal_group_to_proto(proposal);
+  }
+  if (state.current_action_time_remaining) {
+    out.set_current_action_time_remaining(to_micros(*state.current_action_time_remaining));
+  }
+  if (!state.status_message.empty()) out.set_status_message(state.status_message);
   return out;
 }
 

@@ -1,5 +1,7 @@
 // Conversions at the referee gateway's two edges, done once:
 //   league protobuf (Referee, GameEvent; µs, mm) -> core types (types.h; SI) -> IDL (referee.idl)
+// and back to the wire for the built-in referee, which multicasts its RefereeState as a league packet:
+//   core types -> league protobuf (to_proto)
 //
 // Wire -> core units: packet/command/created timestamps Unix µs -> Timestamp (ns); stage_time_left (sint64),
 // current_action_time_remaining (int64), yellow card times, timeout_time and bot_substitution_time_left µs
@@ -8,6 +10,15 @@
 // here fails or throws, whatever a decoded packet holds.
 // Core -> IDL: Timestamps -> int64 Unix ns; Durations -> double s; optionals -> has_ flags (for
 // stage_time_left, which has no flag in the IDL, "not sent" reads as 0 s).
+// Core -> wire (to_proto), the inverse of from_proto: Timestamps -> Unix µs (truncated; before 1970 -> 0);
+// Durations -> µs truncated toward zero (uint32 fields saturate at 0 and 2^32 - 1 µs, about 71 min);
+// designated_position m -> mm; the float fields saturate at +-FLT_MAX, and a NaN or infinite point or
+// number is not sent (from_proto treats it as not sent anyway). Every proto2 `required` field is set, so
+// the packet serialises. Optionals of the core are sent exactly when present; strings (source_identifier,
+// status_message, event id, Goal.message, PenaltyKickFailed.reason) only when not empty; every TeamInfo
+// field is sent, as the Game Controller does. Receive time and source are not on the wire.
+// from_proto(to_proto(state), state.receive_wall, state.source) == state for times in whole µs and
+// numbers that are exact in a float (locations and values in m / SI, designated_position in mm).
 //
 // Game events are decoded by WHICH oneof field is set (the Type enum number differs from the oneof field
 // number for several events), and flattened into GameEvent's slots. Only when no oneof field is set the
@@ -58,8 +69,17 @@
 // crash_angle, PlacementSucceeded.precision and .distance, PlacementFailed.nearest_own_bot_distance, and
 // the caused events of multiple_fouls beyond their type names.
 //
+// to_proto(GameEvent) sets the oneof member of the event's type with its payload filled back from the
+// slots above, and `type` to the league's Type number (by name: BOUNDARY_CROSSING = 41 in oneof field
+// 43). Slots the type does not carry are dropped, as are by_team for bot_crash_drawn,
+// no_progress_in_game and prepared. Text slots are parsed back: "chipped" -> chipped = true;
+// "accepted" -> accepted = true (anything else: false); "<n> on field, <m> allowed" -> the two counts
+// (other text is dropped); "caused by: A, B" -> one caused event per known type name, with this event's
+// by_team (unknown names are dropped). kUnknown sends type UNKNOWN_GAME_EVENT_TYPE and no oneof member.
+//
 //   RefereeState state = from_proto(*referee, wall.now());
 //   idl::referee::RefereeState sample = to_idl(state);
+//   ::Referee packet = to_proto(builtin_state);   // from_proto(packet, ...) gives builtin_state back
 #pragma once
 
 #include "idl/referee.h"
@@ -77,6 +97,13 @@ GameEvent from_proto(const ::GameEvent& event);
 
 /// The game event type of a league event: by its oneof case, else by the name of its `type`.
 GameEventType game_event_type(const ::GameEvent& event);
+
+/// The inverse of from_proto, for multicasting a referee state as a league packet (IsInitialized() holds).
+/// `receive_wall` and `source` are not on the wire; from_proto takes them as arguments.
+::Referee to_proto(const RefereeState& state);
+::Referee::TeamInfo to_proto(const TeamInfo& team);
+/// The event's type as its oneof member (with the payload of its slots) and as `type`.
+::GameEvent to_proto(const GameEvent& event);
 
 idl::referee::RefereeState to_idl(const RefereeState& state);
 idl::referee::RefereeEvent to_idl(const RefereeEvent& event);

@@ -8,7 +8,6 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
-#include <ostream>
 #include <set>
 #include <string>
 
@@ -16,18 +15,6 @@
 #include "services/referee_gateway/testing/referee_packets.h"
 
 namespace ssl::referee {
-
-// Readable failure messages for the core's game events.
-void PrintTo(const GameEvent& e, std::ostream* os) {
-  *os << "{" << to_string(e.type) << " id='" << e.id << "' team=" << static_cast<int>(e.by_team);
-  if (e.by_bot) *os << " bot=" << *e.by_bot;
-  if (e.other_bot) *os << " other=" << *e.other_bot;
-  if (e.location) *os << " loc=(" << e.location->x() << "," << e.location->y() << ")";
-  if (e.secondary_location)
-    *os << " loc2=(" << e.secondary_location->x() << "," << e.secondary_location->y() << ")";
-  if (e.value) *os << " value=" << *e.value;
-  *os << " text='" << e.text << "'}";
-}
 
 namespace {
 

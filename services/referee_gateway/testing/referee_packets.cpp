@@ -3,6 +3,21 @@
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 
+namespace ssl::referee {
+
+void PrintTo(const GameEvent& e, std::ostream* os) {
+  *os << "{" << to_string(e.type) << " id='" << e.id << "' team=" << static_cast<int>(e.by_team);
+  if (e.by_bot) *os << " bot=" << *e.by_bot;
+  if (e.other_bot) *os << " other=" << *e.other_bot;
+  if (e.location) *os << " loc=(" << e.location->x() << "," << e.location->y() << ")";
+  if (e.secondary_location)
+    *os << " loc2=(" << e.secondary_location->x() << "," << e.secondary_location->y() << ")";
+  if (e.value) *os << " value=" << *e.value;
+  *os << " text='" << e.text << "'}";
+}
+
+}  // namespace ssl::referee
+
 namespace ssl::referee::testing {
 
 ::Referee referee_packet(::Referee::Command command, std::uint32_t counter, std::string_view source) {

@@ -1,6 +1,6 @@
 // Test-only builders of the Game Controller's Referee packets (league protobuf, wire units: µs, mm), for
-// the referee gateway's unit and process tests. Every packet they return has all proto2 `required`
-// fields set, so it encodes and decodes.
+// the referee gateway's unit and process tests, and gtest printing of core game events. Every packet they
+// return has all proto2 `required` fields set, so it encodes and decodes.
 //
 //   ::Referee packet = referee_packet(::Referee::STOP, 7, "gc-1");
 //   *packet.add_game_events() = game_event("ball_left_field_touch_line { by_team: BLUE by_bot: 3 }");
@@ -8,10 +8,19 @@
 #pragma once
 
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <string_view>
 
 #include "proto/ssl_gc_referee_message.pb.h"
+#include "services/referee_gateway/core/types.h"
+
+namespace ssl::referee {
+
+/// Readable gtest failure messages for the core's game events (found by argument-dependent lookup).
+void PrintTo(const GameEvent& e, std::ostream* os);
+
+}  // namespace ssl::referee
 
 namespace ssl::referee::testing {
 
