@@ -1,19 +1,27 @@
 // referee_gateway: listens to the SSL Game Controller's Referee multicast (224.5.23.1:10003) and
 // publishes referee.state (the whole state, transient local) and referee.event (each game event once)
-// on DDS, with system.health once per second. Flags override keys of deploy/config/referee_gateway.yaml.
+// on DDS, with system.health once per second. With --source builtin it also runs our own referee
+// (--profile arcade|strict_ai|FILE), which watches vision.detection, takes operator commands from
+// referee.command and multicasts league Referee packets on the same group and port; the gateway then
+// listens to those like to a Game Controller's (so other teams' software can use our referee too).
+// Flags override keys of deploy/config/referee_gateway.yaml.
 //
-// Exit codes: 0 after SIGINT/SIGTERM; 1 when the config, the socket or DDS cannot be set up; 2 for a usage
-// the gateway cannot serve (--source builtin, which is not available yet; --profile without it).
+// Exit codes: 0 after SIGINT/SIGTERM; 1 when the config, the profile, the socket or DDS cannot be set up;
+// 2 for --profile without --source builtin.
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <memory>
+#include <optional>
 
 #include "libs/common/deploy_files.h"
 #include "libs/common/shutdown.h"
 #include "libs/dds/participant.h"
 #include "libs/time/clock.h"
+#include "services/referee_gateway/adapter/builtin_service.h"
 #include "services/referee_gateway/adapter/service.h"
+#include "services/referee_gateway/builtin/profile.h"
 #include "services/referee_gateway/referee_gateway_config.h"
 
 namespace {
@@ -40,7 +48,8 @@ int main(int argc, char** argv) {
   ssl::ShutdownSignal shutdown;  // before any thread exists
   Flags flags;
   CLI::App app{
-      "referee_gateway: SSL Game Controller referee packets -> referee.state and referee.event (DDS)",
+      "referee_gateway: SSL Game Controller (or our built-in referee's) packets -> referee.state and "
+      "referee.event (DDS)",
       "referee_gateway"};
   app.add_option("--config", flags.config_file, "YAML config (default deploy/config/referee_gateway.yaml)");
   app.add_option("--domain", flags.domain, "DDS domain id")->check(CLI::Range(0, 232));
@@ -81,15 +90,20 @@ int main(int argc, char** argv) {
     logger->critical("{}", config.error().message);
     return 1;
   }
-  if (config->source == ssl::referee::SourceKind::kBuiltin) {
-    logger->critical(
-        "the built-in referee (--source builtin) is not available yet; run a Game Controller and "
-        "use --source gc");
-    return 2;
-  }
-  if (!flags.profile.empty()) {
+  const bool builtin = config->source == ssl::referee::SourceKind::kBuiltin;
+  if (!flags.profile.empty() && !builtin) {
     logger->critical("--profile selects a built-in referee profile and needs --source builtin");
     return 2;
+  }
+  if (!flags.profile.empty()) config->builtin.profile = flags.profile;
+  std::optional<ssl::referee::RefereeProfile> profile;
+  if (builtin) {
+    auto loaded = ssl::referee::load_referee_profile(config->builtin.profile);
+    if (!loaded) {
+      logger->critical("{}", loaded.error().message);
+      return 1;
+    }
+    profile = std::move(*loaded);
   }
   if (flags.print_config) {
     std::cout << ssl::referee::referee_gateway_config_yaml(*config);
@@ -104,17 +118,48 @@ int main(int argc, char** argv) {
   ssl::time::RealClock wall;
   ssl::time::MonotonicClock monotonic;
   const auto& network = config->network;
+  std::unique_ptr<ssl::referee::BuiltinRefereeService> referee;
+  if (builtin) {
+    const auto& b = config->builtin;
+    const bool division_a = b.division == ssl::referee::Division::kA;
+    auto opened = ssl::referee::BuiltinRefereeService::open(
+        {.group = network.referee_group,
+         .port = network.referee_port,
+         .interface_address = network.interface_address,
+         .profile = *profile,
+         .field = division_a ? ssl::referee::FieldGeometry::division_a() : ssl::referee::FieldGeometry::division_b(),
+         .setup = {.yellow = {b.yellow_team, static_cast<std::uint32_t>(b.yellow_goalkeeper)},
+                   .blue = {b.blue_team, static_cast<std::uint32_t>(b.blue_goalkeeper)},
+                   .max_allowed_bots = division_a ? 11u : 6u,
+                   .blue_on_positive_half = b.blue_on_positive_half},
+         .step_period = ssl::time::duration_from_seconds(b.step_period),
+         .send_period = ssl::time::duration_from_seconds(b.send_period),
+         .vision_max_age = ssl::time::duration_from_seconds(b.vision_max_age)},
+        *participant, logger, wall);
+    if (!opened) {
+      logger->critical("built-in referee: {}", opened.error().message);
+      return 1;
+    }
+    referee = std::move(*opened);
+  }
   auto service = ssl::referee::RefereeGatewayService::open(
       {.group = network.referee_group,
        .port = network.referee_port,
        .interface_address = network.interface_address,
        .gateway = ssl::referee::gateway_options(*config),
-       .source = ssl::referee::RefereeSource::kGameController,
+       .source = builtin ? ssl::referee::RefereeSource::kBuiltin : ssl::referee::RefereeSource::kGameController,
        .log_interval = ssl::time::duration_from_seconds(config->log_interval)},
       *participant, logger, wall, monotonic);
   if (!service) {
     logger->critical("{}", service.error().message);
     return 1;
+  }
+  if (referee) {
+    logger->info("built-in referee, profile {}, division {}: Referee packets to {}:{} via {}, operator "
+                 "commands on referee.command",
+                 profile->name, config->builtin.division == ssl::referee::Division::kA ? "A" : "B",
+                 network.referee_group, network.referee_port, network.interface_address);
+    referee->start();
   }
   logger->info("listening for referee packets on {}:{} via {}, source {}, DDS domain {}",
                network.referee_group, network.referee_port, network.interface_address,
@@ -122,6 +167,7 @@ int main(int argc, char** argv) {
   (*service)->start();
   shutdown.wait();
   logger->info("stopping");
+  if (referee) referee->stop();
   (*service)->stop();
   return 0;
 }

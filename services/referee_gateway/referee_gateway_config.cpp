@@ -18,6 +18,26 @@ Fields<NetworkConfig> network_fields() {
   };
 }
 
+Fields<BuiltinConfig> builtin_fields() {
+  return {
+      field("profile", &BuiltinConfig::profile).doc("arcade, strict_ai or a YAML profile file (--profile)"),
+      field("division", &BuiltinConfig::division)
+          .values({{"a", Division::kA}, {"b", Division::kB}})
+          .doc("the field's rule numbers and robots per team (11 / 6)"),
+      field("blue_on_positive_half", &BuiltinConfig::blue_on_positive_half),
+      field("yellow_team", &BuiltinConfig::yellow_team).doc("team name sent in the Referee packets"),
+      field("blue_team", &BuiltinConfig::blue_team).doc("team name sent in the Referee packets"),
+      field("yellow_goalkeeper", &BuiltinConfig::yellow_goalkeeper).range(0, 15),
+      field("blue_goalkeeper", &BuiltinConfig::blue_goalkeeper).range(0, 15),
+      field("step_period", &BuiltinConfig::step_period).unit("s").range(0.001, 1)
+          .doc("between referee steps (vision in, rules, commands)"),
+      field("send_period", &BuiltinConfig::send_period).unit("s").range(0.01, 5)
+          .doc("between Referee packets without a new command"),
+      field("vision_max_age", &BuiltinConfig::vision_max_age).unit("s").range(0.01, 10)
+          .doc("camera frames older than this are not observed"),
+  };
+}
+
 Fields<RefereeGatewayConfig> gateway_fields() {
   return Fields<RefereeGatewayConfig>{
       field("source", &RefereeGatewayConfig::source)
@@ -45,6 +65,7 @@ Fields<RefereeGatewayConfig> gateway_fields() {
           .unit("s")
           .range(0, 3600)
           .doc("repeated warnings of one kind (malformed packets, counter jumps) at most this often"),
+      nested("builtin", &RefereeGatewayConfig::builtin, builtin_fields()),
   }
       .check([](const RefereeGatewayConfig& config) -> Status {
         if (config.source_identifier.empty())

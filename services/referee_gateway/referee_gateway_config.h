@@ -16,8 +16,25 @@
 
 namespace ssl::referee {
 
-/// gc: listen to a Game Controller on the referee group; builtin: our own referee (a later issue).
+/// gc: listen to a Game Controller on the referee group; builtin: run our own referee, which multicasts
+/// league Referee packets on that group, and listen to it like to a Game Controller.
 enum class SourceKind { kGameController, kBuiltin };
+
+enum class Division { kA, kB };
+
+/// The built-in referee (source builtin).
+struct BuiltinConfig {
+  std::string profile;            // arcade, strict_ai or a YAML file (--profile)
+  Division division = Division::kB;  // the field's rule numbers and max_allowed_bots (11 / 6)
+  bool blue_on_positive_half = false;
+  std::string yellow_team;        // team names in the Referee packets
+  std::string blue_team;
+  int yellow_goalkeeper = 0;
+  int blue_goalkeeper = 0;
+  double step_period = 0;         // s between referee steps
+  double send_period = 0;         // s between Referee packets without a new command
+  double vision_max_age = 0;      // s: older camera frames are not observed
+};
 
 struct NetworkConfig {
   std::string interface_address;  // multicast interface the group is joined on
@@ -34,6 +51,7 @@ struct RefereeGatewayConfig {
   double stale_after = 0;          // s
   int remembered_events = 0;
   double log_interval = 0;  // s between repeated warnings of one kind (malformed, jumps, foreign)
+  BuiltinConfig builtin;
 };
 
 /// Loads and validates a config file; `overrides` are "key.path=value" strings (from flags).

@@ -1,10 +1,12 @@
 // referee_gateway as a process, as it runs at a match: Referee packets multicast on loopback (like the
 // Game Controller, about every 25 ms) in; referee.state, referee.event and system.health read back over
-// DDS and through `sslctl topic echo`. Each test has its own DDS domain (181-186) and referee port
-// (44181-44186). Nothing sleeps to wait for discovery: readers wait for matched writers or data, bounded.
+// DDS and through `sslctl topic echo`; and the built-in referee. Each test has its own DDS domain (181-187)
+// and referee port (44181-44187). Nothing sleeps to wait for discovery: readers wait for matched writers or data, bounded.
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -327,15 +329,109 @@ TEST(RefereeGatewayProcess, AStaleRefereeTurnsHealthToWarnWithItsAge) {
   stop(gateway);
 }
 
-TEST(RefereeGatewayProcess, TheBuiltinRefereeIsNotAvailableYet) {
-  auto builtin = ChildProcess::start(ssl::testing::bin_dir() / "referee_gateway",
-                                     {"--source", "builtin", "--profile", "arcade", "--domain", "186"});
-  ASSERT_TRUE(builtin);
-  const auto line = builtin->read_line(kTimeout);
-  EXPECT_EQ(builtin->wait(kTimeout), 2);
-  ASSERT_TRUE(line) << builtin->drain_stderr();
-  EXPECT_NE(line->find("built-in referee"), std::string::npos) << *line;
-  EXPECT_NE(line->find("not available yet"), std::string::npos) << *line;
+// The built-in referee as it runs in `./ssl up`: arcade profile, vision.detection and referee.command in
+// (this test writes them over DDS), league Referee packets out on the referee group, which the same
+// process's gateway turns into referee.state. A ball rolled into the positive-x goal (yellow's: blue
+// defends negative x) scores for blue; arcade restarts with FORCE_START after its 2 s STOP by itself.
+TEST(RefereeGatewayProcess, TheBuiltinRefereeScoresAGoalSeenInVisionAndSendsLeaguePackets) {
+  constexpr int kDomain = 187;
+  constexpr int kPort = 44187;
+  auto gateway = start_gateway(kPort, kDomain, {"--source", "builtin", "--profile", "arcade"});
+  auto packets = net::MulticastReceiver::open("224.5.23.1", kPort, "127.0.0.1");
+  ASSERT_TRUE(packets) << packets.error().message;
+  Observer observer(kDomain);
+  auto vision = value_of(observer.participant->make_writer(dds::topics::kVisionDetection));
+  auto operator_commands = value_of(observer.participant->make_writer(dds::topics::kRefereeCommand));
+  ASSERT_TRUE(observer.wait_for_gateway());
+  ASSERT_TRUE(vision.wait_for_match(1, kTimeout));
+  ASSERT_TRUE(operator_commands.wait_for_match(1, kTimeout));
+
+  // The newest referee.state satisfying `accept` while vision frames with the ball at ball(t) go out
+  // every 10 ms (t: seconds since the call).
+  auto state_while_seeing = [&](const std::function<Vec2(double)>& ball,
+                                const std::function<bool(const idl::referee::RefereeState&)>& accept)
+      -> std::optional<idl::referee::RefereeState> {
+    const auto start = Clock::now();
+    std::uint32_t frame_number = 0;
+    while (Clock::now() < start + kTimeout) {
+      const double t = std::chrono::duration<double>(Clock::now() - start).count();
+      idl::vision::DetectionFrame frame;
+      frame.camera_id(0);
+      frame.frame_number(++frame_number);
+      const std::int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                      std::chrono::system_clock::now().time_since_epoch())
+                                      .count();
+      frame.capture_unix_ns(now_ns);
+      frame.receive_unix_ns(now_ns);
+      idl::vision::BallDetection detection;
+      detection.x(ball(t).x());
+      detection.y(ball(t).y());
+      detection.confidence(0.9F);
+      frame.balls().push_back(detection);
+      EXPECT_TRUE(vision.write(frame));
+      if (!observer.state->wait_for_data(10ms)) continue;
+      for (auto& sample : observer.state->take()) {
+        if (accept(sample.data)) return sample.data;
+      }
+    }
+    return std::nullopt;
+  };
+  auto at_centre = [](double) { return Vec2(0, 0); };
+
+  idl::referee::RefereeOperatorCommand force_start;
+  force_start.command(idl::referee::COMMAND_FORCE_START);
+  force_start.author("test");
+  ASSERT_TRUE(operator_commands.write(force_start));
+  const auto running = state_while_seeing(at_centre, [](const auto& s) {
+    return s.command() == idl::referee::COMMAND_FORCE_START;
+  });
+  ASSERT_TRUE(running) << "the operator's FORCE_START never arrived";
+  EXPECT_EQ(running->source(), idl::referee::REFEREE_SOURCE_BUILTIN);
+  EXPECT_EQ(running->stage(), idl::referee::STAGE_NORMAL_FIRST_HALF);
+
+  // Rolled from the centre into the positive-x goal at 3 m/s (division B: goal line at x = 4.5 m).
+  auto into_the_goal = [](double t) { return Vec2(std::min(3.0 * t, 4.6), 0.1); };
+  const auto goal = state_while_seeing(into_the_goal, [](const auto& s) { return s.blue().score() == 1; });
+  ASSERT_TRUE(goal) << "no goal";
+  EXPECT_EQ(goal->command(), idl::referee::COMMAND_STOP);
+  EXPECT_EQ(goal->yellow().score(), 0u);
+  ASSERT_TRUE(goal->has_next_command());
+  EXPECT_EQ(goal->next_command(), idl::referee::COMMAND_FORCE_START);
+  const auto restarted = state_while_seeing(at_centre, [&](const auto& s) {
+    return s.command() == idl::referee::COMMAND_FORCE_START && s.command_counter() > goal->command_counter();
+  });
+  ASSERT_TRUE(restarted) << "arcade did not restart after the goal";
+  EXPECT_EQ(restarted->blue().score(), 1u);
+
+  // What went over the wire are league Referee packets other teams can read: every one decodes, and (the
+  // socket has queued them since the start) one carries the restart after the goal.
+  std::array<std::uint8_t, 65536> buffer{};
+  std::optional<::Referee> restart_packet;
+  std::size_t decoded_packets = 0;
+  const auto deadline = Clock::now() + kTimeout;
+  while (!restart_packet && Clock::now() < deadline) {
+    const net::ReceiveResult received = packets->receive(buffer, 100ms);
+    if (!received.ok()) continue;
+    auto decoded = league::decode_referee({buffer.data(), received.size});
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    ++decoded_packets;
+    EXPECT_EQ(decoded->source_identifier(), "builtin:arcade");
+    if (decoded->blue().score() == 1 && decoded->command() == ::Referee::FORCE_START) restart_packet = *decoded;
+  }
+  ASSERT_TRUE(restart_packet) << "no restart packet among " << decoded_packets << " on 224.5.23.1:" << kPort;
+  EXPECT_EQ(restart_packet->yellow().score(), 0u);
+  EXPECT_EQ(restart_packet->stage(), ::Referee::NORMAL_FIRST_HALF);
+  stop(gateway);
+}
+
+TEST(RefereeGatewayProcess, BadBuiltinRefereeUsageIsRefusedWithAClearMessage) {
+  auto unknown = ChildProcess::start(ssl::testing::bin_dir() / "referee_gateway",
+                                     {"--source", "builtin", "--profile", "no_such_profile", "--domain", "186"});
+  ASSERT_TRUE(unknown);
+  const auto line = unknown->read_line(kTimeout);
+  EXPECT_EQ(unknown->wait(kTimeout), 1);
+  ASSERT_TRUE(line) << unknown->drain_stderr();
+  EXPECT_NE(line->find("no_such_profile"), std::string::npos) << *line;
 
   auto profile_only = ChildProcess::start(ssl::testing::bin_dir() / "referee_gateway",
                                           {"--profile", "strict_ai", "--domain", "186"});

@@ -1,0 +1,171 @@
+#include "services/referee_gateway/adapter/builtin_service.h"
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "libs/dds/health.h"
+#include "libs/net/multicast.h"
+#include "libs/time/periodic_timer.h"
+#include "services/referee_gateway/adapter/builtin_input.h"
+#include "services/referee_gateway/adapter/convert.h"
+
+namespace ssl::referee {
+
+struct BuiltinRefereeService::Impl {
+  Impl(const BuiltinServiceOptions& options_in, net::MulticastSender sender_in,
+       dds::Reader<idl::vision::DetectionFrame> vision_in,
+       dds::Reader<idl::referee::RefereeOperatorCommand> commands_in, dds::HealthReporter health_in,
+       std::shared_ptr<spdlog::logger> logger_in, time::Clock& wall_in)
+      : options(options_in),
+        sender(std::move(sender_in)),
+        vision_reader(std::move(vision_in)),
+        command_reader(std::move(commands_in)),
+        health(std::move(health_in)),
+        logger(std::move(logger_in)),
+        wall(wall_in),
+        referee(options_in.profile, options_in.field, options_in.setup) {}
+
+  void run();
+  void step();
+  void send(time::Timestamp now);
+  void report_health();
+
+  BuiltinServiceOptions options;
+  net::MulticastSender sender;
+  dds::Reader<idl::vision::DetectionFrame> vision_reader;
+  dds::Reader<idl::referee::RefereeOperatorCommand> command_reader;
+  dds::HealthReporter health;
+  std::shared_ptr<spdlog::logger> logger;
+  time::Clock& wall;
+  time::MonotonicClock pace;
+  BuiltinReferee referee;
+  VisionObservation vision;
+  std::optional<time::Timestamp> last_sent;   // wall clock
+  std::uint32_t last_sent_counter = 0;
+  std::optional<time::Timestamp> last_vision;  // wall clock of the newest vision frame received
+  std::uint64_t packets_sent = 0, send_errors = 0, operator_commands = 0, rejected_commands = 0,
+                vision_frames = 0;
+  std::uint64_t packets_at_last_report = 0;
+  std::optional<time::Timestamp> last_report;  // monotonic
+};
+
+void BuiltinRefereeService::Impl::run() {
+  time::PeriodicTimer steps(pace, options.step_period);
+  time::PeriodicTimer health_timer(pace, options.health_period);
+  while (steps.wait_next()) {
+    step();
+    if (health_timer.poll(pace.now())) report_health();
+  }
+}
+
+void BuiltinRefereeService::Impl::step() {
+  const time::Timestamp now = wall.now();
+  for (const auto& sample : vision_reader.take()) {
+    vision.add(sample.data);
+    ++vision_frames;
+    last_vision = now;
+  }
+  for (const auto& sample : command_reader.take()) {
+    const std::optional<OperatorCommand> command = operator_command(sample.data);
+    const Status applied = command ? referee.command(command->command, now, command->designated_position)
+                                   : Status(Error{"not a league command"});
+    if (applied) {
+      ++operator_commands;
+      logger->info("operator ({}): {}", sample.data.author(), to_string(referee.state().command));
+    } else {
+      ++rejected_commands;
+      logger->warn("operator command from {} rejected: {}", sample.data.author(), applied.error().message);
+    }
+  }
+  referee.step(vision.observe(now, options.vision_max_age), now);
+  const bool new_command = referee.state().command_counter != last_sent_counter;
+  if (new_command || !last_sent || now - *last_sent >= options.send_period) send(now);
+}
+
+void BuiltinRefereeService::Impl::send(time::Timestamp now) {
+  const ::Referee packet = to_proto(referee.state());
+  std::string bytes;
+  if (!packet.SerializeToString(&bytes)) {
+    ++send_errors;
+    return;
+  }
+  const Status sent =
+      sender.send({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()});
+  if (!sent) {
+    if (send_errors++ % 100 == 0) logger->warn("{} (and {} more)", sent.error().message, send_errors - 1);
+    return;
+  }
+  ++packets_sent;
+  last_sent = now;
+  last_sent_counter = referee.state().command_counter;
+}
+
+void BuiltinRefereeService::Impl::report_health() {
+  const time::Timestamp now = pace.now();
+  const double elapsed = last_report ? time::to_seconds(now - *last_report) : 0;
+  const double rate = elapsed > 0 ? static_cast<double>(packets_sent - packets_at_last_report) / elapsed : 0;
+  last_report = now;
+  packets_at_last_report = packets_sent;
+  const bool vision_fresh = last_vision && wall.now() - *last_vision < options.vision_max_age * 10;
+  const InputCounters& inputs = referee.counters();
+  const RefereeState& state = referee.state();
+  const Status published = health.publish(
+      {.level = vision_fresh ? dds::HealthLevel::kOk : dds::HealthLevel::kWarn,
+       .status = std::string(vision_fresh ? "" : "no vision: the referee sees no ball; ") + "profile " +
+                 referee.profile().name + ", " + std::string(to_string(state.command)) + ", " +
+                 std::string(to_string(state.stage)) + ", yellow " + std::to_string(state.yellow.score) +
+                 " : " + std::to_string(state.blue.score) + " blue",
+       .rate_hz = rate,
+       .errors = send_errors,
+       .dropped = rejected_commands + vision.invalid_detections() + inputs.invalid_ball + inputs.invalid_robot +
+                  inputs.unknown_robot_id + inputs.duplicate_robot + inputs.rejected_commands,
+       .counters = {{"packets_sent", packets_sent},
+                    {"send_errors", send_errors},
+                    {"operator_commands", operator_commands},
+                    {"rejected_operator_commands", rejected_commands},
+                    {"vision_frames", vision_frames},
+                    {"invalid_detections", vision.invalid_detections()},
+                    {"command_counter", state.command_counter},
+                    {"observations", inputs.observations},
+                    {"missing_ball", inputs.missing_ball},
+                    {"invalid_ball", inputs.invalid_ball},
+                    {"invalid_robot", inputs.invalid_robot},
+                    {"unknown_robot_id", inputs.unknown_robot_id},
+                    {"duplicate_robot", inputs.duplicate_robot},
+                    {"rejected_commands", inputs.rejected_commands},
+                    {"time_went_backwards", inputs.time_went_backwards}}});
+  if (!published) logger->warn("health: {}", published.error().message);
+}
+
+Result<std::unique_ptr<BuiltinRefereeService>> BuiltinRefereeService::open(
+    const BuiltinServiceOptions& options, dds::Participant& participant, std::shared_ptr<spdlog::logger> logger,
+    time::Clock& wall) {
+  auto sender = net::MulticastSender::open(options.group, options.port, options.interface_address);
+  if (!sender) return sender.error();
+  auto vision = participant.make_reader(dds::topics::kVisionDetection);
+  if (!vision) return vision.error();
+  auto commands = participant.make_reader(dds::topics::kRefereeCommand);
+  if (!commands) return commands.error();
+  auto health = dds::HealthReporter::create(participant, options.health_name);
+  if (!health) return health.error();
+  return std::unique_ptr<BuiltinRefereeService>(new BuiltinRefereeService(std::make_unique<Impl>(
+      options, std::move(*sender), std::move(*vision), std::move(*commands), std::move(*health),
+      std::move(logger), wall)));
+}
+
+BuiltinRefereeService::BuiltinRefereeService(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+BuiltinRefereeService::~BuiltinRefereeService() { stop(); }
+
+void BuiltinRefereeService::start() {
+  if (!thread_.joinable()) thread_ = std::thread([this] { impl_->run(); });
+}
+
+void BuiltinRefereeService::stop() {
+  impl_->pace.stop();
+  if (thread_.joinable()) thread_.join();
+}
+
+}  // namespace ssl::referee

@@ -1,0 +1,73 @@
+// BuiltinRefereeService: runs the built-in referee (builtin/builtin_referee.h) as a league referee. One
+// thread owns everything; every step_period it
+//
+//   vision.detection (DDS) -> VisionObservation -+
+//   referee.command (DDS, the operator) ---------+-> BuiltinReferee.step(now) -> Referee packet (league
+//                                                    protobuf) multicast on group:port
+//
+// sending a packet at once on a new command and otherwise every send_period, as a Game Controller does.
+// Our own referee_gateway (and any other team's software) reads those packets like a Game Controller's,
+// so referee.state and referee.event come from the usual gateway path: the packets are the only output.
+// Health "referee_gateway/builtin" once per health_period: rate = packets sent per second, WARN while no
+// fresh vision arrives (the referee then sees no ball), counters: packets_sent, send_errors,
+// operator_commands, rejected_commands, vision_frames, invalid_detections and the core's input counters.
+//
+// Clocks: `wall` (Unix) stamps the packets and drives the referee's timers; a monotonic clock of the
+// service's own paces the loop (stop() stops it, so the thread never hangs in a sleep).
+//
+//   auto service = BuiltinRefereeService::open(options, participant, logger, wall);
+//   (*service)->start(); shutdown.wait(); (*service)->stop();
+#pragma once
+
+#include <spdlog/logger.h>
+
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "libs/common/result.h"
+#include "libs/dds/participant.h"
+#include "libs/time/clock.h"
+#include "services/referee_gateway/builtin/builtin_referee.h"
+
+namespace ssl::referee {
+
+struct BuiltinServiceOptions {
+  std::string group = "224.5.23.1";
+  int port = 10003;
+  std::string interface_address = "127.0.0.1";
+  RefereeProfile profile;
+  FieldGeometry field = FieldGeometry::division_b();
+  MatchSetup setup;
+  time::Duration step_period = std::chrono::milliseconds(10);
+  time::Duration send_period = std::chrono::milliseconds(100);  // between packets without a new command
+  time::Duration vision_max_age = std::chrono::milliseconds(100);
+  time::Duration health_period = std::chrono::seconds(1);
+  std::string health_name = "referee_gateway/builtin";
+};
+
+class BuiltinRefereeService {
+ public:
+  /// Opens the multicast sender, the two readers and the health reporter; the error names what failed.
+  static Result<std::unique_ptr<BuiltinRefereeService>> open(const BuiltinServiceOptions& options,
+                                                             dds::Participant& participant,
+                                                             std::shared_ptr<spdlog::logger> logger,
+                                                             time::Clock& wall);
+  ~BuiltinRefereeService();  // stop()
+  BuiltinRefereeService(const BuiltinRefereeService&) = delete;
+  BuiltinRefereeService& operator=(const BuiltinRefereeService&) = delete;
+
+  /// Starts the referee thread (once).
+  void start();
+  /// Stops and joins the referee thread; idempotent.
+  void stop();
+
+ private:
+  struct Impl;
+  explicit BuiltinRefereeService(std::unique_ptr<Impl> impl);
+
+  std::unique_ptr<Impl> impl_;
+  std::thread thread_;
+};
+
+}  // namespace ssl::referee
