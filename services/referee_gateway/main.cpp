@@ -134,7 +134,9 @@ int main(int argc, char** argv) {
                    .blue_on_positive_half = b.blue_on_positive_half},
          .step_period = ssl::time::duration_from_seconds(b.step_period),
          .send_period = ssl::time::duration_from_seconds(b.send_period),
-         .vision_max_age = ssl::time::duration_from_seconds(b.vision_max_age)},
+         .vision_max_age = ssl::time::duration_from_seconds(b.vision_max_age),
+         .teleport_placement_to = b.teleport_placement.empty() ? std::nullopt
+                                                               : std::optional<std::string>(b.teleport_placement)},
         *participant, logger, wall);
     if (!opened) {
       logger->critical("built-in referee: {}", opened.error().message);

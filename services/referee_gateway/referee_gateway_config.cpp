@@ -35,6 +35,8 @@ Fields<BuiltinConfig> builtin_fields() {
           .doc("between Referee packets without a new command"),
       field("vision_max_age", &BuiltinConfig::vision_max_age).unit("s").range(0.01, 10)
           .doc("camera frames older than this are not observed"),
+      field("teleport_placement", &BuiltinConfig::teleport_placement)
+          .doc("'' (the robots place the ball) or the simulator's control host:port: it places the ball"),
   };
 }
 

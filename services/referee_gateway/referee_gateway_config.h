@@ -34,6 +34,7 @@ struct BuiltinConfig {
   double step_period = 0;         // s between referee steps
   double send_period = 0;         // s between Referee packets without a new command
   double vision_max_age = 0;      // s: older camera frames are not observed
+  std::string teleport_placement;  // "" (robots place the ball) or the simulator's control "host:port"
 };
 
 struct NetworkConfig {

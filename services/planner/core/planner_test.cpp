@@ -265,6 +265,20 @@ TEST_P(PlannerRefereeTest, OurPlacementPlacerGoesToBallThenToTarget) {
   EXPECT_TRUE(intent(10).dribble);
 }
 
+TEST_P(PlannerRefereeTest, OurPlacementLeavesABallAlreadyOnTheTargetAlone) {
+  // The simulator (or a human) put the ball on the target: the placer keeps clear instead of grabbing it.
+  const Vec2 target(1.0, -1.0);
+  script_.set_ball(target + Vec2(0.03, 0.0));
+  script_.robot(10)->position = target + Vec2(0.4, 0.2);
+  script_.command(script_.ours(Restart::kPlacement), script_.ours(Restart::kFreeKick), target);
+  const PlannerOutput out = ticks(3);
+  const auto placer = robot_with_role(out, "placer");
+  ASSERT_TRUE(placer);
+  EXPECT_EQ(role(out, *placer)->skill, "release_ball");
+  EXPECT_FALSE(intent(*placer).dribble);
+  EXPECT_GT((intent(*placer).target - script_.ball()).norm(), kR + 0.0215) << "not onto the ball";
+}
+
 TEST_P(PlannerRefereeTest, TheirPlacementClearsBallAndCorridor) {
   const Vec2 ball(-1.0, 2.0);
   const Vec2 target(-3.0, 0.0);

@@ -478,7 +478,12 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
     using P = PlayMemory::PlacePhase;
     switch (memory.place_phase) {
       case P::kApproach:
-        if (holds_ball) memory.place_phase = P::kCarry;
+        // A ball already on the target (placed by the simulator, or left there) is not touched again.
+        if (ball_error < s.config->placement_tolerance * 0.5) {
+          memory.place_phase = P::kRelease;
+        } else if (holds_ball) {
+          memory.place_phase = P::kCarry;
+        }
         break;
       case P::kCarry:
         if (ball_error < 0.04) {
@@ -524,7 +529,8 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
         break;
       }
       case P::kRelease:
-        intent.target = s.ball - heading * (ball_clearance(s) + 0.05);
+        // Straight away from the ball (behind the dribbler after a carry).
+        intent.target = s.ball + unit_or(rel, -heading) * (ball_clearance(s) + 0.05);
         intent.orientation = placer->orientation;
         intent.max_speed = 0.5;
         intent.skill = "release_ball";

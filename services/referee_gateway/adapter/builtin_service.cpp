@@ -7,6 +7,8 @@
 
 #include "libs/dds/health.h"
 #include "libs/net/multicast.h"
+#include "libs/net/udp.h"
+#include "proto/ssl_simulation_control.pb.h"
 #include "libs/time/periodic_timer.h"
 #include "services/referee_gateway/adapter/builtin_input.h"
 #include "services/referee_gateway/adapter/convert.h"
@@ -17,9 +19,12 @@ struct BuiltinRefereeService::Impl {
   Impl(const BuiltinServiceOptions& options_in, net::MulticastSender sender_in,
        dds::Reader<idl::vision::DetectionFrame> vision_in,
        dds::Reader<idl::referee::RefereeOperatorCommand> commands_in, dds::HealthReporter health_in,
+       std::optional<net::UdpSocket> simulator_in, std::optional<net::Endpoint> simulator_control_in,
        std::shared_ptr<spdlog::logger> logger_in, time::Clock& wall_in)
       : options(options_in),
         sender(std::move(sender_in)),
+        simulator(std::move(simulator_in)),
+        simulator_control(simulator_control_in),
         vision_reader(std::move(vision_in)),
         command_reader(std::move(commands_in)),
         health(std::move(health_in)),
@@ -30,10 +35,14 @@ struct BuiltinRefereeService::Impl {
   void run();
   void step();
   void send(time::Timestamp now);
+  void teleport_placement();
   void report_health();
 
   BuiltinServiceOptions options;
   net::MulticastSender sender;
+  std::optional<net::UdpSocket> simulator;  // with teleport_placement_to
+  std::optional<net::Endpoint> simulator_control;
+  std::optional<std::uint32_t> teleported_for;  // command counter of the last placement done so
   dds::Reader<idl::vision::DetectionFrame> vision_reader;
   dds::Reader<idl::referee::RefereeOperatorCommand> command_reader;
   dds::HealthReporter health;
@@ -46,7 +55,7 @@ struct BuiltinRefereeService::Impl {
   std::uint32_t last_sent_counter = 0;
   std::optional<time::Timestamp> last_vision;  // wall clock of the newest vision frame received
   std::uint64_t packets_sent = 0, send_errors = 0, operator_commands = 0, rejected_commands = 0,
-                vision_frames = 0;
+                vision_frames = 0, placements_teleported = 0, teleport_errors = 0;
   std::uint64_t packets_at_last_report = 0;
   std::optional<time::Timestamp> last_report;  // monotonic
 };
@@ -80,6 +89,7 @@ void BuiltinRefereeService::Impl::step() {
     }
   }
   referee.step(vision.observe(now, options.vision_max_age), now);
+  if (simulator) teleport_placement();
   const bool new_command = referee.state().command_counter != last_sent_counter;
   if (new_command || !last_sent || now - *last_sent >= options.send_period) send(now);
 }
@@ -102,6 +112,34 @@ void BuiltinRefereeService::Impl::send(time::Timestamp now) {
   last_sent_counter = referee.state().command_counter;
 }
 
+void BuiltinRefereeService::Impl::teleport_placement() {
+  const RefereeState& state = referee.state();
+  const bool placing = state.command == Command::kBallPlacementYellow || state.command == Command::kBallPlacementBlue;
+  if (!placing || !state.designated_position || teleported_for == state.command_counter) return;
+  teleported_for = state.command_counter;
+  ::SimulatorCommand command;
+  ::TeleportBall* ball = command.mutable_control()->mutable_teleport_ball();
+  ball->set_x(static_cast<float>(state.designated_position->x()));
+  ball->set_y(static_cast<float>(state.designated_position->y()));
+  ball->set_z(0);
+  ball->set_vx(0);
+  ball->set_vy(0);
+  ball->set_vz(0);
+  std::string bytes;
+  Status sent = command.SerializeToString(&bytes)
+                    ? simulator->send_to(*simulator_control,
+                                         {reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()})
+                    : Status(Error{"SimulatorCommand does not serialise"});
+  if (!sent) {
+    ++teleport_errors;
+    logger->warn("ball placement by the simulator: {}", sent.error().message);
+    return;
+  }
+  ++placements_teleported;
+  logger->info("ball placement by the simulator: ball to ({:.2f}, {:.2f})", state.designated_position->x(),
+               state.designated_position->y());
+}
+
 void BuiltinRefereeService::Impl::report_health() {
   const time::Timestamp now = pace.now();
   const double elapsed = last_report ? time::to_seconds(now - *last_report) : 0;
@@ -118,7 +156,7 @@ void BuiltinRefereeService::Impl::report_health() {
                  std::string(to_string(state.stage)) + ", yellow " + std::to_string(state.yellow.score) +
                  " : " + std::to_string(state.blue.score) + " blue",
        .rate_hz = rate,
-       .errors = send_errors,
+       .errors = send_errors + teleport_errors,
        .dropped = rejected_commands + vision.invalid_detections() + inputs.invalid_ball + inputs.invalid_robot +
                   inputs.unknown_robot_id + inputs.duplicate_robot + inputs.rejected_commands,
        .counters = {{"packets_sent", packets_sent},
@@ -126,6 +164,8 @@ void BuiltinRefereeService::Impl::report_health() {
                     {"operator_commands", operator_commands},
                     {"rejected_operator_commands", rejected_commands},
                     {"vision_frames", vision_frames},
+                    {"placements_teleported", placements_teleported},
+                    {"teleport_errors", teleport_errors},
                     {"invalid_detections", vision.invalid_detections()},
                     {"command_counter", state.command_counter},
                     {"observations", inputs.observations},
@@ -150,9 +190,19 @@ Result<std::unique_ptr<BuiltinRefereeService>> BuiltinRefereeService::open(
   if (!commands) return commands.error();
   auto health = dds::HealthReporter::create(participant, options.health_name);
   if (!health) return health.error();
+  std::optional<net::UdpSocket> simulator;
+  std::optional<net::Endpoint> simulator_control;
+  if (options.teleport_placement_to) {
+    auto endpoint = net::Endpoint::parse(*options.teleport_placement_to);
+    if (!endpoint) return Error{"teleport placement: " + endpoint.error().message};
+    auto socket = net::UdpSocket::open("0.0.0.0", 0);
+    if (!socket) return socket.error();
+    simulator.emplace(std::move(*socket));
+    simulator_control = *endpoint;
+  }
   return std::unique_ptr<BuiltinRefereeService>(new BuiltinRefereeService(std::make_unique<Impl>(
       options, std::move(*sender), std::move(*vision), std::move(*commands), std::move(*health),
-      std::move(logger), wall)));
+      std::move(simulator), simulator_control, std::move(logger), wall)));
 }
 
 BuiltinRefereeService::BuiltinRefereeService(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

@@ -6,6 +6,8 @@
 //                                                    protobuf) multicast on group:port
 //
 // sending a packet at once on a new command and otherwise every send_period, as a Game Controller does.
+// With teleport_placement_to (simulated matches) a ball placement is done by the simulator: one
+// SimulatorCommand teleports the ball onto the placement point (counted as placements_teleported).
 // Our own referee_gateway (and any other team's software) reads those packets like a Game Controller's,
 // so referee.state and referee.event come from the usual gateway path: the packets are the only output.
 // Health "referee_gateway/builtin" once per health_period: rate = packets sent per second, WARN while no
@@ -22,6 +24,7 @@
 #include <spdlog/logger.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -44,6 +47,10 @@ struct BuiltinServiceOptions {
   time::Duration vision_max_age = std::chrono::milliseconds(100);
   time::Duration health_period = std::chrono::seconds(1);
   std::string health_name = "referee_gateway/builtin";
+  // In a simulated match: the simulator's control port (SimulatorCommand, UDP). When set, each ball
+  // placement the referee orders is done by teleporting the ball onto the placement point at once (the
+  // robots need not fetch a ball that rolled far out); the referee then sees the placement succeed.
+  std::optional<std::string> teleport_placement_to;  // "host:port", e.g. "127.0.0.1:10300"
 };
 
 class BuiltinRefereeService {

@@ -42,6 +42,9 @@
 //    the other team (PREPARE_PENALTY, next NORMAL_START). An attacker entirely inside the opponent's
 //    area, or touching the ball while partly inside -> foul, STOP, then (automatic) the defenders' free
 //    kick where the ball is.
+//  * no progress (division B numbers, the profile's): the ball not moved 0.05 m for `timeout` while
+//    running, or a restart (kickoff, penalty, free kick) not taken within `kick_timeout` -> kNoProgressInGame
+//    / kKickTimeout, STOP, then FORCE_START after stop_duration (automatic).
 //  * keep-out: in STOP every robot, during a restart (placement, preparation, free kick before the ball
 //    is in play) the other team's robots, must keep `radius` between their nearest side and the ball (for
 //    a placement: the segment ball -> target). Inside for `violation_persistence` -> one foul per stay
@@ -140,6 +143,7 @@ class BuiltinReferee {
   static constexpr std::uint32_t kMaxRobotId = 15;
   static constexpr double kTouchMargin = 0.02;     // m beyond robot + ball radius that counts as touch
   static constexpr double kInPlayDistance = 0.05;  // m the ball moves after a kick command: in play
+  static constexpr double kSpeedBaseline = 0.1;    // s over which an unmeasured ball speed is estimated
   static constexpr double kBallAtRestSpeed = 0.1;  // m/s
   static constexpr double kPlacementHold = 0.5;    // s the placed ball must stay placed and at rest
   static constexpr std::uint32_t kTimeoutsPerTeam = 4;
@@ -213,6 +217,8 @@ class BuiltinReferee {
   std::optional<Transition> judge_ball_left_field(const geom::Vec2& ball, time::Timestamp now);
   std::optional<Transition> judge_defense_areas(const CleanObservation& observation, time::Timestamp now);
   std::optional<Transition> judge_placement(const CleanObservation& observation, time::Timestamp now);
+  std::optional<Transition> judge_progress(const CleanObservation& observation, time::Timestamp now);
+  std::optional<Transition> judge_kick_timeout(const CleanObservation& observation, time::Timestamp now);
   std::optional<Transition> automatic_continuation(time::Timestamp now) const;
   void judge_keep_out(const CleanObservation& observation, time::Timestamp now);
 
@@ -240,9 +246,14 @@ class BuiltinReferee {
 
   std::optional<geom::Vec2> last_ball_;  // latest valid ball position
   std::optional<time::Timestamp> last_ball_time_;
+  // Ball speed without a measured velocity: the displacement from a reference at least kSpeedBaseline old.
+  std::optional<std::pair<geom::Vec2, time::Timestamp>> speed_reference_;
+  std::optional<double> estimated_ball_speed_;  // m/s
   std::optional<geom::Vec2> kick_reference_ball_;        // where the ball was when the kick command came
   std::optional<geom::Vec2> ball_inside_since_running_;  // last in-field ball position while running
   std::optional<Touch> last_touch_;
+  std::optional<geom::Vec2> progress_ball_;  // running: where the ball rests since progress_since_
+  time::Timestamp progress_since_;
   std::optional<time::Timestamp> last_goal_;
 
   int placement_attempt_ = 0;                          // 1: first team, 2: the other team after a failure

@@ -636,5 +636,62 @@ TEST(BuiltinReferee, TheSameInputsGiveTheSameStates) {
   EXPECT_GT(first.state().command_counter, 10u) << "the script should exercise the rules";
 }
 
+TEST(BuiltinReferee, ARestingBallSeenWithDetectionNoiseAndNoVelocityIsPlaced) {
+  // Vision gives positions only, each with a few millimetres of noise; 10 ms apart that alone looks like
+  // 0.4 m/s. The speed is estimated over 0.1 s, so the ball at the target is at rest.
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  ASSERT_TRUE(referee.command(Command::kBallPlacementYellow, at(0), Vec2(1.0, -2.0)));
+  for (int i = 0; i <= 200; ++i) {
+    const double noise = (i % 2 == 0 ? 0.003 : -0.003) * ((i % 3) + 1) / 3.0;
+    referee.step({.ball_position = Vec2(1.0 + noise, -2.0 - noise)}, at(0.01 * i));
+  }
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  ASSERT_NE(last_event(referee), nullptr);
+  EXPECT_EQ(last_event(referee)->type, GameEventType::kPlacementSucceeded);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// No progress
+
+TEST(BuiltinReferee, ABallThatRestsTenSecondsWhileRunningIsRestartedWithForceStart) {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  // Creeping 0.06 m every 5 s is progress; then it rests.
+  for (double t = 0; t <= 12.0; t += 0.01) referee.step(ball_at({0.06 * std::floor(t / 5.0), 1.0}), at(t));
+  EXPECT_EQ(referee.state().command, Command::kForceStart) << "the ball moved 0.06 m at 5 s and 10 s";
+  double stopped_at = -1;
+  for (double t = 12.01; t <= 25.0 && stopped_at < 0; t += 0.01) {
+    referee.step(ball_at({0.12, 1.0}), at(t));
+    if (referee.state().command == Command::kStop) stopped_at = t;
+  }
+  EXPECT_NEAR(stopped_at, 20.0, 0.02) << "10 s after the last movement (at 10 s)";
+  ASSERT_NE(last_event(referee), nullptr);
+  EXPECT_EQ(last_event(referee)->type, GameEventType::kNoProgressInGame);
+  expect_near(last_event(referee)->location, Vec2(0.12, 1.0));
+  EXPECT_EQ(referee.state().next_command, Command::kForceStart);
+  for (double t = stopped_at; t <= stopped_at + 2.05; t += 0.01) referee.step(ball_at({0.12, 1.0}), at(t));
+  EXPECT_EQ(referee.state().command, Command::kForceStart) << "FORCE_START after stop_duration (2 s)";
+}
+
+TEST(BuiltinReferee, AFreeKickNotTakenInTimeIsRestartedWithForceStart) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  ASSERT_TRUE(referee.command(Command::kStop, at(0)));
+  ASSERT_TRUE(referee.command(Command::kDirectFreeBlue, at(1)));
+  for (double t = 1; t <= 10.9; t += 0.01) referee.step(ball_at({-1.0, 0.5}), at(t));
+  EXPECT_EQ(referee.state().command, Command::kDirectFreeBlue);
+  for (double t = 10.9; t <= 11.05; t += 0.01) referee.step(ball_at({-1.0, 0.5}), at(t));
+  EXPECT_EQ(referee.state().command, Command::kStop) << "10 s after DIRECT_FREE_BLUE";
+  ASSERT_NE(last_event(referee), nullptr);
+  EXPECT_EQ(last_event(referee)->type, GameEventType::kKickTimeout);
+  EXPECT_EQ(last_event(referee)->by_team, Team::kBlue);
+  EXPECT_EQ(referee.state().next_command, Command::kForceStart);
+}
+
+TEST(BuiltinReferee, WithoutTheNoProgressRuleARestingBallIsLeftAlone) {
+  BuiltinReferee referee = running_referee(builtin_profile("arcade"));
+  for (double t = 0; t <= 30.0; t += 0.01) referee.step(ball_at({1.0, 1.0}), at(t));
+  EXPECT_EQ(referee.state().command, Command::kForceStart);
+  EXPECT_EQ(last_event(referee), nullptr);
+}
+
 }  // namespace
 }  // namespace ssl::referee

@@ -15,7 +15,7 @@ using config::field;
 using config::Fields;
 using config::nested;
 
-constexpr std::string_view kBuiltinProfiles = "arcade, strict_ai";
+constexpr std::string_view kBuiltinProfiles = "arcade, strict_ai, simulation";
 
 Fields<GoalDetectionRule> goal_detection_fields() {
   return {
@@ -69,12 +69,27 @@ Fields<KeepOutRule> keep_out_fields() {
   };
 }
 
+Fields<NoProgressRule> no_progress_fields() {
+  return {
+      field("enabled", &NoProgressRule::enabled),
+      field("timeout", &NoProgressRule::timeout)
+          .unit("s")
+          .range(1, 600)
+          .doc("the ball not moved 0.05 m this long while running: STOP, then FORCE_START"),
+      field("kick_timeout", &NoProgressRule::kick_timeout)
+          .unit("s")
+          .range(1, 600)
+          .doc("a kickoff, penalty or free kick not taken this long: STOP, then FORCE_START"),
+  };
+}
+
 Fields<RefereeRules> rules_fields() {
   return {
       nested("goal_detection", &RefereeRules::goal_detection, goal_detection_fields()),
       nested("out_of_bounds", &RefereeRules::out_of_bounds, out_of_bounds_fields()),
       nested("defense_area", &RefereeRules::defense_area, defense_area_fields()),
       nested("keep_out", &RefereeRules::keep_out, keep_out_fields()),
+      nested("no_progress", &RefereeRules::no_progress, no_progress_fields()),
   };
 }
 

@@ -50,11 +50,21 @@ struct KeepOutRule {
   double violation_persistence = 0;  // s a robot must stay too close before it is a foul
 };
 
+/// A game that does not go on: the ball not moved 0.05 m while running for `timeout` (no progress; 10 s in
+/// division B, 5 s in A), or a restart not taken within `kick_timeout` (the same numbers) -> STOP, then
+/// FORCE_START after stop_duration, as the Game Controller does.
+struct NoProgressRule {
+  bool enabled = false;
+  double timeout = 0;       // s
+  double kick_timeout = 0;  // s from NORMAL_START (after a preparation) or a free kick to the kick
+};
+
 struct RefereeRules {
   GoalDetectionRule goal_detection;
   OutOfBoundsRule out_of_bounds;
   DefenseAreaRule defense_area;
   KeepOutRule keep_out;
+  NoProgressRule no_progress;
 };
 
 struct GameSettings {

@@ -53,6 +53,19 @@ TEST(RefereeProfile, StrictAiEnablesAllFourRulesAndWaitsForTheOperatorAfterAGoal
   EXPECT_EQ(profile->game.kickoff_team, TeamColor::kYellow);
 }
 
+TEST(RefereeProfile, SimulationRefereesGoalsAndOutOfBoundsAndContinuesWithoutAnOperator) {
+  auto profile = load_referee_profile("simulation");
+  ASSERT_TRUE(profile) << profile.error().message;
+  EXPECT_EQ(profile->name, "simulation");
+  EXPECT_TRUE(profile->rules.goal_detection.enabled);
+  EXPECT_TRUE(profile->rules.out_of_bounds.enabled);
+  EXPECT_TRUE(profile->rules.out_of_bounds.ball_placement);
+  EXPECT_FALSE(profile->rules.defense_area.enabled);
+  EXPECT_TRUE(profile->rules.keep_out.enabled);
+  EXPECT_FALSE(profile->game.force_start_after_goal);  // the conceding team kicks off ...
+  EXPECT_TRUE(profile->game.auto_continue);           // ... without an operator
+}
+
 TEST(RefereeProfile, APathLoadsAndThePrintedYamlLoadsBackEqual) {
   auto strict = load_referee_profile("strict_ai");
   ASSERT_TRUE(strict) << strict.error().message;
@@ -109,7 +122,7 @@ TEST(RefereeProfile, AnUnknownNameListsTheBuiltInProfiles) {
   ASSERT_FALSE(loaded);
   EXPECT_NE(loaded.error().message.find("unknown referee profile 'no_such_profile'"), std::string::npos)
       << loaded.error().message;
-  EXPECT_NE(loaded.error().message.find("arcade, strict_ai"), std::string::npos) << loaded.error().message;
+  EXPECT_NE(loaded.error().message.find("arcade, strict_ai, simulation"), std::string::npos) << loaded.error().message;
   EXPECT_FALSE(load_referee_profile("../secrets"));
   EXPECT_FALSE(load_referee_profile("/no/such/file.yaml"));
 }
