@@ -18,6 +18,7 @@ namespace ssl::referee {
 
 namespace {
 
+using testing::expect_every_field_set;
 using testing::full_referee_packet;
 using testing::game_event;
 using testing::referee_packet;
@@ -66,29 +67,9 @@ void expect_team(const idl::referee::TeamInfo& team, std::uint32_t base, const s
 TEST(RefereeGatewayConvert, TheFullTestPacketSetsEveryFieldOfTheLeagueMessage) {
   // Guards the next test: a field added to the .proto must be added to full_referee_packet (and mapped).
   const ::Referee packet = full_referee_packet();
-  const auto* reflection = packet.GetReflection();
-  const auto* descriptor = ::Referee::descriptor();
-  for (int i = 0; i < descriptor->field_count(); ++i) {
-    const auto* field = descriptor->field(i);
-    if (field->is_repeated()) {
-      EXPECT_GT(reflection->FieldSize(packet, field), 0) << field->name();
-    } else {
-      EXPECT_TRUE(reflection->HasField(packet, field)) << field->name();
-    }
-  }
-  const auto* team_descriptor = ::Referee::TeamInfo::descriptor();
-  for (int i = 0; i < team_descriptor->field_count(); ++i) {
-    const auto* field = team_descriptor->field(i);
-    for (const auto* team : {&packet.yellow(), &packet.blue()}) {
-      if (field->is_repeated()) {
-        EXPECT_GT(team->GetReflection()->FieldSize(*team, field), 0) << field->name();
-      } else {
-        EXPECT_TRUE(team->GetReflection()->HasField(*team, field)) << field->name();
-      }
-    }
-  }
-  EXPECT_EQ(descriptor->field_count(), 17);       // the 17 fields of ssl-protocols.md section 7
-  EXPECT_EQ(team_descriptor->field_count(), 18);  // TeamInfo fields 1-10 and 12-19
+  expect_every_field_set(packet);
+  EXPECT_EQ(::Referee::descriptor()->field_count(), 17);            // the 17 fields of ssl-protocols.md section 7
+  EXPECT_EQ(::Referee::TeamInfo::descriptor()->field_count(), 18);  // TeamInfo fields 1-10 and 12-19
 }
 
 TEST(RefereeGatewayConvert, EveryRefereeFieldIsMappedWithItsUnits) {

@@ -313,26 +313,7 @@ TEST(RefereeGatewayEncode, AFullyPopulatedStateRoundTrips) {
 
 TEST(RefereeGatewayEncode, AFullStateSetsEveryFieldOfTheLeagueMessage) {
   const ::Referee packet = to_proto(full_state());
-  const auto* descriptor = ::Referee::descriptor();
-  for (int i = 0; i < descriptor->field_count(); ++i) {
-    const auto* field = descriptor->field(i);
-    if (field->is_repeated()) {
-      EXPECT_GT(packet.GetReflection()->FieldSize(packet, field), 0) << field->name();
-    } else {
-      EXPECT_TRUE(packet.GetReflection()->HasField(packet, field)) << field->name();
-    }
-  }
-  const auto* team_descriptor = ::Referee::TeamInfo::descriptor();
-  for (int i = 0; i < team_descriptor->field_count(); ++i) {
-    const auto* field = team_descriptor->field(i);
-    for (const auto* team : {&packet.yellow(), &packet.blue()}) {
-      if (field->is_repeated()) {
-        EXPECT_GT(team->GetReflection()->FieldSize(*team, field), 0) << field->name();
-      } else {
-        EXPECT_TRUE(team->GetReflection()->HasField(*team, field)) << field->name();
-      }
-    }
-  }
+  testing::expect_every_field_set(packet);
 }
 
 TEST(RefereeGatewayEncode, AbsentOptionalsAreNotSentAndStayAbsent) {

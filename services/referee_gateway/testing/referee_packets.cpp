@@ -108,4 +108,22 @@ std::string encode(const ::Referee& packet) {
   return bytes;
 }
 
+void expect_every_field_set(const ::Referee& packet) {
+  auto expect_set = [](const google::protobuf::Message& message, const google::protobuf::FieldDescriptor* field,
+                       const char* where) {
+    if (field->is_repeated()) {
+      EXPECT_GT(message.GetReflection()->FieldSize(message, field), 0) << where << field->name();
+    } else {
+      EXPECT_TRUE(message.GetReflection()->HasField(message, field)) << where << field->name();
+    }
+  };
+  const auto* descriptor = ::Referee::descriptor();
+  for (int i = 0; i < descriptor->field_count(); ++i) expect_set(packet, descriptor->field(i), "");
+  const auto* team_descriptor = ::Referee::TeamInfo::descriptor();
+  for (int i = 0; i < team_descriptor->field_count(); ++i) {
+    expect_set(packet.yellow(), team_descriptor->field(i), "yellow.");
+    expect_set(packet.blue(), team_descriptor->field(i), "blue.");
+  }
+}
+
 }  // namespace ssl::referee::testing

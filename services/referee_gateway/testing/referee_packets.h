@@ -36,6 +36,10 @@ namespace ssl::referee::testing {
 /// current test (and returns an empty event) when the text does not parse.
 ::GameEvent game_event(std::string_view text);
 
+/// Fails the current test for each field of Referee and of both TeamInfos that `packet` does not set (an
+/// empty repeated field counts as not set).
+void expect_every_field_set(const ::Referee& packet);
+
 /// Serialized bytes of a packet (fails the current test if a required field is missing).
 std::string encode(const ::Referee& packet);
 
