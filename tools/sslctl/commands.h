@@ -69,6 +69,19 @@ int estop(bool engage, const std::string& reason, const DdsOptions& dds, double 
 int health(const DdsOptions& dds, double listen_s, bool json, ShutdownSignal& shutdown, std::ostream& out,
            std::ostream& err);
 
+struct LatencyOptions {
+  int domain_id = 0;
+  double listen_s = 5.0;  // how long to collect samples
+  bool json = false;      // one JSON object per stage
+};
+
+/// `sslctl latency`: the pipeline's latency per stage, from the VisionStamp every vision-derived sample
+/// carries: for vision.detection, world.state and robot.commands (both teams) the time from vision_gateway
+/// receiving the camera frame to this process receiving the sample (p50 / p99 / max, ms), and the vision
+/// delay (capture -> gateway receive). Clocks: the gateway's and this host's wall clocks (on different
+/// hosts they must be synchronised, e.g. by PTP or chrony). 1 when nothing arrived.
+int latency(const LatencyOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err);
+
 // ---------------------------------------------------------------------------------------------------
 // SSL log files (the league's format, libs/league/log_file.h): record, replay, info.
 

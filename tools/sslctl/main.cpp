@@ -2,6 +2,7 @@
 //   sslctl topic list | echo TOPIC | hz TOPIC | pub TOPIC JSON
 //   sslctl estop on|off
 //   sslctl health
+//   sslctl latency                                        (per-stage latency from the vision stamps)
 //   sslctl log record FILE | replay FILE | info FILE     (the league's SSL log files)
 // Every DDS command takes --domain D (and --team blue|yellow for team-scoped topics).
 #include <CLI/CLI.hpp>
@@ -45,7 +46,7 @@ void apply_team(ssl::sslctl::DdsOptions& options, const std::string& team) {
 
 int main(int argc, char** argv) {
   ssl::ShutdownSignal shutdown;  // before any DDS thread exists
-  CLI::App app{"sslctl: inspect and drive the SSL stack (topics, e-stop, health, log files)", "sslctl"};
+  CLI::App app{"sslctl: inspect and drive the SSL stack (topics, e-stop, health, latency, log files)", "sslctl"};
   app.require_subcommand(1);
 
   auto* topic = app.add_subcommand("topic", "DDS topics of the stack");
@@ -110,6 +111,15 @@ int main(int argc, char** argv) {
   health_cmd->add_flag("--json", health_json, "one JSON object per service");
   add_dds_flags(*health_cmd, health_dds, health_team);
 
+  ssl::sslctl::LatencyOptions latency;
+  auto* latency_cmd = app.add_subcommand(
+      "latency", "pipeline latency per stage from the vision stamps (vision_gateway receive -> each topic)");
+  latency_cmd->add_option("--listen", latency.listen_s, "collect this many seconds")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  latency_cmd->add_flag("--json", latency.json, "one JSON object per stage");
+  latency_cmd->add_option("--domain", latency.domain_id, "DDS domain id")->check(CLI::Range(0, 232));
+
   auto* log = app.add_subcommand("log", "SSL log files in the league's format (.log, .log.gz)");
   log->require_subcommand(1);
 
@@ -165,6 +175,7 @@ int main(int argc, char** argv) {
   if (health_cmd->parsed()) {
     return ssl::sslctl::health(health_dds, health_listen, health_json, shutdown, std::cout, std::cerr);
   }
+  if (latency_cmd->parsed()) return ssl::sslctl::latency(latency, shutdown, std::cout, std::cerr);
   if (record_cmd->parsed()) {
     record.legacy = !record_no_legacy;
     return ssl::sslctl::log_record(record, shutdown, std::cout, std::cerr);

@@ -1,11 +1,16 @@
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <mutex>
+#include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include "idl/idl_json.h"
+#include "libs/common/percentile.h"
 #include "libs/dds/participant.h"
 #include "tools/sslctl/commands.h"
 
@@ -90,6 +95,104 @@ int health(const DdsOptions& dds_options, double listen_s, bool json, ShutdownSi
         << std::fixed << std::setprecision(1) << health.rate_hz() << std::setw(12) << std::setprecision(3)
         << health.latency_p99() * 1e3 << std::setw(10) << health.errors() << std::setw(10) << health.dropped()
         << health.status() << '\n';
+  }
+  return 0;
+}
+
+namespace {
+
+/// Latencies of one pipeline stage, ms.
+struct Stage {
+  std::string name;
+  std::string path;  // what the latency spans
+  std::vector<double> ms;
+};
+
+}  // namespace
+
+int latency(const LatencyOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err) {
+  auto participant = dds::Participant::create({.domain_id = options.domain_id, .name = "sslctl/latency"});
+  if (!participant) {
+    err << "sslctl: " << participant.error().message << '\n';
+    return 1;
+  }
+  const char* from_gateway = "vision_gateway receive -> here";
+  std::vector<Stage> stages = {
+      {"vision delay", "capture (vision host) -> vision_gateway receive", {}},
+      {"vision.detection", from_gateway, {}},
+      {"world.state/blue", from_gateway, {}},
+      {"world.state/yellow", from_gateway, {}},
+      {"robot.commands/blue", from_gateway, {}},
+      {"robot.commands/yellow", from_gateway, {}},
+  };
+  // Callback readers: every sample counts when it arrives (a polled keep-last-1 reader would miss some),
+  // with the time it arrived. The callbacks run on Fast DDS threads.
+  std::mutex mutex;
+  auto add = [&](std::size_t stage, std::int64_t from_ns, std::int64_t to_ns) {
+    if (from_ns <= 0 || to_ns <= 0) return;
+    std::lock_guard lock(mutex);
+    stages[stage].ms.push_back(static_cast<double>(to_ns - from_ns) * 1e-6);
+  };
+  auto vision = participant->make_reader(
+      dds::topics::kVisionDetection, std::nullopt, [&](const dds::Sample<idl::vision::DetectionFrame>& sample) {
+        add(0, sample.data.capture_unix_ns(), sample.data.receive_unix_ns());
+        add(1, sample.data.receive_unix_ns(), sample.reception_unix_ns);
+      });
+  if (!vision) {
+    err << "sslctl: " << vision.error().message << '\n';
+    return 1;
+  }
+  std::vector<dds::Reader<idl::world::WorldState>> worlds;
+  std::vector<dds::Reader<idl::robot::RobotCommands>> commands;
+  for (const std::size_t team : {0u, 1u}) {
+    const TeamColor color = team == 0 ? TeamColor::kBlue : TeamColor::kYellow;
+    auto world = participant->make_reader(
+        dds::topics::kWorldState, color, [&add, team](const dds::Sample<idl::world::WorldState>& sample) {
+          add(2 + team, sample.data.stamp().receive_unix_ns(), sample.reception_unix_ns);
+        });
+    auto command = participant->make_reader(
+        dds::topics::kRobotCommands, color, [&add, team](const dds::Sample<idl::robot::RobotCommands>& sample) {
+          add(4 + team, sample.data.stamp().receive_unix_ns(), sample.reception_unix_ns);
+        });
+    if (!world || !command) {
+      err << "sslctl: " << (!world ? world.error().message : command.error().message) << '\n';
+      return 1;
+    }
+    worlds.push_back(std::move(*world));
+    commands.push_back(std::move(*command));
+  }
+  shutdown.wait_for(duration_cast<nanoseconds>(duration<double>(options.listen_s)));
+  // Stop the callbacks (delete the readers) before reading what they collected.
+  { auto closed = std::move(*vision); }
+  worlds.clear();
+  commands.clear();
+  std::lock_guard lock(mutex);
+  bool any = false;
+  if (!options.json) {
+    out << std::left << std::setw(24) << "STAGE" << std::setw(9) << "SAMPLES" << std::setw(10) << "P50 ms"
+        << std::setw(10) << "P99 ms" << std::setw(10) << "MAX ms" << "SPAN\n";
+  }
+  for (Stage& stage : stages) {
+    if (stage.ms.empty()) continue;
+    any = true;
+    const double max = *std::max_element(stage.ms.begin(), stage.ms.end());
+    const double p50 = percentile(stage.ms, 0.5);
+    const double p99 = percentile(stage.ms, 0.99);
+    if (options.json) {
+      out << nlohmann::json{{"stage", stage.name}, {"span", stage.path}, {"samples", stage.ms.size()},
+                            {"p50_ms", p50}, {"p99_ms", p99}, {"max_ms", max}}
+                 .dump()
+          << '\n';
+      continue;
+    }
+    out << std::left << std::setw(24) << stage.name << std::setw(9) << stage.ms.size() << std::fixed
+        << std::setprecision(3) << std::setw(10) << p50 << std::setw(10) << p99 << std::setw(10) << max
+        << stage.path << '\n';
+  }
+  if (!any) {
+    err << "sslctl: no vision.detection, world.state or robot.commands sample on domain " << options.domain_id
+        << " within " << options.listen_s << " s\n";
+    return 1;
   }
   return 0;
 }
