@@ -61,6 +61,14 @@ struct PolynomialFit {
   double window = 0;  // s
 };
 
+/// The yellow (enemy) detections of `frame`, captured `t` s after the start, with the truth then.
+void add_enemy_samples(const sim::DetectionFrame& frame, const sim::WorldSnapshot& truth, double t,
+                       std::vector<EnemySample>& samples) {
+  for (const auto& d : frame.robots_yellow) {
+    samples.push_back({t, d.robot_id, Vec2(d.x, d.y), find_robot(truth, TeamColor::kYellow, d.robot_id)->position});
+  }
+}
+
 PolynomialFit best_polynomial_fit(std::vector<EnemySample> samples, double measure_from) {
   std::stable_sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
   double raw = 0;
@@ -144,10 +152,7 @@ TEST(WorldModelAccuracy, RobotPositionAndVelocityRmsAtLeastHalfOfRawUnderRealist
   h.run(8s, drive, [&](const sim::DetectionFrame& frame) {
     const double t = time::to_seconds(frame.capture_time - start);
     const sim::WorldSnapshot& truth = h.truth(frame.capture_time);
-    for (const auto& d : frame.robots_yellow) {
-      const Vec2 true_position = find_robot(truth, TeamColor::kYellow, d.robot_id)->position;
-      enemy_samples.push_back({t, d.robot_id, Vec2(d.x, d.y), true_position});
-    }
+    add_enemy_samples(frame, truth, t, enemy_samples);
     if (t < 1.0) return;
     const WorldState world = h.model().state_at_vision_time(frame.capture_time);
     for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
@@ -240,10 +245,7 @@ TEST(WorldModelAccuracy, PlannerDrivenRobotsPositionRmsAtLeastHalfOfRawForOurs) 
   h.run(8s, drive, [&](const sim::DetectionFrame& frame) {
     const double t = time::to_seconds(frame.capture_time - start);
     const sim::WorldSnapshot& truth = h.truth(frame.capture_time);
-    for (const auto& d : frame.robots_yellow) {
-      const Vec2 true_position = find_robot(truth, TeamColor::kYellow, d.robot_id)->position;
-      enemy_samples.push_back({t, d.robot_id, Vec2(d.x, d.y), true_position});
-    }
+    add_enemy_samples(frame, truth, t, enemy_samples);
     if (t < 1.0) return;  // robots converge onto their paths
     const WorldState world = h.model().state_at_vision_time(frame.capture_time);
     for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
