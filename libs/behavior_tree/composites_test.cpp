@@ -18,10 +18,10 @@ using ::testing::IsEmpty;
 using testing::at_ms;
 using testing::ScriptedLeaves;
 
-constexpr NodeStatus kIdle = NodeStatus::kIdle;
-constexpr NodeStatus kRunning = NodeStatus::kRunning;
-constexpr NodeStatus kSuccess = NodeStatus::kSuccess;
-constexpr NodeStatus kFailure = NodeStatus::kFailure;
+using testing::kFailure;
+using testing::kIdle;
+using testing::kRunning;
+using testing::kSuccess;
 
 // ---- Sequence (with memory) ----
 

@@ -21,6 +21,12 @@
 
 namespace ssl::bt::testing {
 
+// Short names for the statuses the tests compare with.
+inline constexpr NodeStatus kIdle = NodeStatus::kIdle;
+inline constexpr NodeStatus kRunning = NodeStatus::kRunning;
+inline constexpr NodeStatus kSuccess = NodeStatus::kSuccess;
+inline constexpr NodeStatus kFailure = NodeStatus::kFailure;
+
 /// A timestamp `ms` milliseconds after the epoch.
 inline time::Timestamp at_ms(std::int64_t ms) { return time::Timestamp::from_milliseconds(ms); }
 

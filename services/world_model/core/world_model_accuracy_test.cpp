@@ -124,6 +124,14 @@ struct BallErrors {
     }
     last_raw = {frame.capture_time, raw};
   }
+
+  /// add() for a frame of the harness' run captured after `from` that shows the ball (the model must too).
+  void add_after(const SimHarness& h, const sim::DetectionFrame& frame, time::Timestamp from) {
+    if (frame.capture_time < from || frame.balls.empty()) return;
+    const WorldState world = h.model().state_at_vision_time(frame.capture_time);
+    ASSERT_TRUE(world.has_ball);
+    add(frame, world, h.truth(frame.capture_time));
+  }
 };
 
 
@@ -302,10 +310,7 @@ TEST(WorldModelAccuracy, BallPositionRmsAtLeastHalfOfRawWhileRollingAndKicked) {
     }
   };
   h.run(8s, script, [&](const sim::DetectionFrame& frame) {
-    if (time::to_seconds(frame.capture_time - start) < 0.3 || frame.balls.empty()) return;
-    const WorldState world = h.model().state_at_vision_time(frame.capture_time);
-    ASSERT_TRUE(world.has_ball);
-    errors.add(frame, world, h.truth(frame.capture_time));
+    errors.add_after(h, frame, start + 300ms);
   });
   const auto& [raw_pos, filt_pos, filt_vel, naive_vel, last_raw] = errors;
   std::printf("[WorldModel] ball (realistic, rolling + kick, %zu samples): position RMS raw %.2f mm, filtered "
@@ -381,10 +386,7 @@ TEST(WorldModelAccuracy, BallPositionRmsAtLeastHalfOfRawWhilePassedBetweenRobots
   };
   BallErrors errors;
   h.run(14s, script, [&](const sim::DetectionFrame& frame) {
-    if (time::to_seconds(frame.capture_time - start) < 0.3 || frame.balls.empty()) return;
-    const WorldState world = h.model().state_at_vision_time(frame.capture_time);
-    ASSERT_TRUE(world.has_ball);
-    errors.add(frame, world, h.truth(frame.capture_time));
+    errors.add_after(h, frame, start + 300ms);
   });
   const auto& [raw_pos, filt_pos, filt_vel, naive_vel, last_raw] = errors;
   std::printf("[WorldModel] ball passed between robots (realistic, %d kicks, %zu samples): position RMS raw %.2f mm, "
