@@ -18,6 +18,10 @@ constexpr std::optional<TeamColor> parse_team(std::string_view text) {
   return std::nullopt;
 }
 
+/// Which half blue defends until a referee says otherwise: the negative one, as the Game Controller starts a
+/// match. The built-in referee, world_model (the team frame) and every config default use this one value.
+inline constexpr bool kBlueOnPositiveHalfAtStart = false;
+
 constexpr TeamColor opponent(TeamColor team) {
   return team == TeamColor::kBlue ? TeamColor::kYellow : TeamColor::kBlue;
 }

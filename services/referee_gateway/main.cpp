@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
   std::unique_ptr<ssl::referee::BuiltinRefereeService> referee;
   if (builtin) {
     const auto& b = config->builtin;
-    const bool division_a = b.division == ssl::referee::Division::kA;
+    const bool division_a = b.division == ssl::Division::kA;
     auto opened = ssl::referee::BuiltinRefereeService::open(
         {.group = network.referee_group,
          .port = network.referee_port,
@@ -130,7 +130,8 @@ int main(int argc, char** argv) {
          .field = division_a ? ssl::referee::FieldGeometry::division_a() : ssl::referee::FieldGeometry::division_b(),
          .setup = {.yellow = {b.yellow_team, static_cast<std::uint32_t>(b.yellow_goalkeeper)},
                    .blue = {b.blue_team, static_cast<std::uint32_t>(b.blue_goalkeeper)},
-                   .max_allowed_bots = division_a ? 11u : 6u,
+                   .division = b.division,
+                   .max_allowed_bots = ssl::max_robots_per_team(b.division),
                    .blue_on_positive_half = b.blue_on_positive_half},
          .step_period = ssl::time::duration_from_seconds(b.step_period),
          .send_period = ssl::time::duration_from_seconds(b.send_period),
@@ -159,7 +160,7 @@ int main(int argc, char** argv) {
   if (referee) {
     logger->info("built-in referee, profile {}, division {}: Referee packets to {}:{} via {}, operator "
                  "commands on referee.command",
-                 profile->name, config->builtin.division == ssl::referee::Division::kA ? "A" : "B",
+                 profile->name, config->builtin.division == ssl::Division::kA ? "A" : "B",
                  network.referee_group, network.referee_port, network.interface_address);
     referee->start();
   }

@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "libs/common/division.h"
 #include "libs/common/result.h"
+#include "libs/common/team.h"
 #include "services/referee_gateway/core/gateway.h"
 
 namespace ssl::referee {
@@ -20,13 +22,11 @@ namespace ssl::referee {
 /// league Referee packets on that group, and listen to it like to a Game Controller.
 enum class SourceKind { kGameController, kBuiltin };
 
-enum class Division { kA, kB };
-
 /// The built-in referee (source builtin).
 struct BuiltinConfig {
   std::string profile;            // arcade, strict_ai or a YAML file (--profile)
   Division division = Division::kB;  // the field's rule numbers and max_allowed_bots (11 / 6)
-  bool blue_on_positive_half = false;
+  bool blue_on_positive_half = kBlueOnPositiveHalfAtStart;  // in the first half; swapped at half time
   std::string yellow_team;        // team names in the Referee packets
   std::string blue_team;
   int yellow_goalkeeper = 0;

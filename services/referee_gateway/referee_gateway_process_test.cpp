@@ -393,7 +393,11 @@ TEST(RefereeGatewayProcess, TheBuiltinRefereeScoresAGoalSeenInVisionAndSendsLeag
   auto into_the_goal = [](double t) { return Vec2(std::min(3.0 * t, 4.6), 0.1); };
   const auto goal = state_while_seeing(into_the_goal, [](const auto& s) { return s.blue().score() == 1; });
   ASSERT_TRUE(goal) << "no goal";
-  EXPECT_EQ(goal->command(), idl::referee::COMMAND_STOP);
+  // arcade: the conceding team places the ball on the centre mark, then the game goes on.
+  EXPECT_EQ(goal->command(), idl::referee::COMMAND_BALL_PLACEMENT_YELLOW);
+  ASSERT_TRUE(goal->has_designated_position());
+  EXPECT_EQ(goal->designated_position().x(), 0.0);
+  EXPECT_EQ(goal->designated_position().y(), 0.0);
   EXPECT_EQ(goal->yellow().score(), 0u);
   ASSERT_TRUE(goal->has_next_command());
   EXPECT_EQ(goal->next_command(), idl::referee::COMMAND_FORCE_START);

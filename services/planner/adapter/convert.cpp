@@ -58,6 +58,7 @@ Result<wm::WorldState> from_idl(const idl::world::WorldState& in) {
   const auto team = team_from_idl(in.team());
   if (!team) return Error{"world.state team is neither blue nor yellow"};
   out.team = *team;
+  out.flipped = in.flipped();
   out.stamp.capture_time = ts(in.stamp().capture_unix_ns());
   out.stamp.receive_time = ts(in.stamp().receive_unix_ns());
   out.stamp.camera_id = in.stamp().camera_id();
@@ -131,7 +132,6 @@ Result<RefereeInput> from_idl(const idl::referee::RefereeState& in, TeamColor ou
   if (!command) return Error{"referee.state command has an unknown value " + std::to_string(in.command())};
   out.info.command = *command;
   out.info.command_counter = in.command_counter();
-  if (in.has_blue_team_on_positive_half()) out.info.blue_team_on_positive_half = in.blue_team_on_positive_half();
   if (in.has_designated_position()) {
     const auto& p = in.designated_position();
     if (!finite({p.x(), p.y()})) return not_finite("referee.state designated_position");

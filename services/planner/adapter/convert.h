@@ -1,6 +1,6 @@
 // Conversions between the IDL samples of the planner's topics and the planner core's types, done once at
 // the boundary. world.state arrives in the TEAM frame and stays in it; referee.state positions stay in the
-// VISION frame (the core resolves sides from blue_team_on_positive_half); times go from Unix ns to
+// VISION frame (the core turns them with world.state's team frame; the side is never re-derived here); times go from Unix ns to
 // ssl::time::Timestamp on the same clock. Inputs with a NaN or infinite number, an unknown enum value or
 // an impossible robot id are REJECTED (an Error naming the field) so that the node counts them and never
 // passes them on. Outputs (commands) with a non-finite number are replaced by a stop and counted.

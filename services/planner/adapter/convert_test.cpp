@@ -56,6 +56,10 @@ TEST(PlannerConvert, WorldStateKeepsTheTeamFrameAndEveryField) {
   auto world = from_idl(idl_world());
   ASSERT_TRUE(world) << world.error().message;
   EXPECT_EQ(world->team, TeamColor::kBlue);
+  EXPECT_FALSE(world->flipped);
+  auto flipped = idl_world();
+  flipped.flipped(true);
+  EXPECT_TRUE(from_idl(flipped)->flipped) << "the team frame world_model derived travels with the state";
   EXPECT_EQ(world->stamp.capture_time.nanoseconds(), 1'700'000'000'000'000'000);
   EXPECT_EQ(world->stamp.receive_time.nanoseconds(), 1'700'000'000'001'000'000);
   EXPECT_EQ(world->stamp.camera_id, 3u);
@@ -179,7 +183,7 @@ TEST(PlannerConvert, RefereeStateKeepsTheVisionFrameAndOurTeamInfo) {
   EXPECT_EQ(blue->info.command, wm::RefereeCommand::kBallPlacementYellow);
   EXPECT_EQ(blue->info.command_counter, 7u);
   EXPECT_EQ(blue->info.designated_position, wm::Vec2(1.5, -0.5));  // vision frame, as sent
-  EXPECT_EQ(blue->info.blue_team_on_positive_half, true);
+  EXPECT_FALSE(blue->info.blue_team_on_positive_half) << "the side comes with world.state (its team frame)";
   EXPECT_EQ(blue->info.next_command, wm::RefereeCommand::kDirectFreeYellow);
   EXPECT_EQ(blue->info.yellow_goalkeeper, 1u);
   EXPECT_EQ(blue->info.blue_goalkeeper, 4u);
@@ -197,7 +201,6 @@ TEST(PlannerConvert, RefereeStateKeepsTheVisionFrameAndOurTeamInfo) {
   ASSERT_TRUE(stop);
   EXPECT_EQ(stop->info.command, wm::RefereeCommand::kStop);
   EXPECT_FALSE(stop->info.designated_position);
-  EXPECT_FALSE(stop->info.blue_team_on_positive_half);
   EXPECT_FALSE(stop->info.next_command);
 }
 

@@ -16,6 +16,8 @@ constexpr double kChipAngle = 0.6;     // rad
 constexpr double kPositionGain = 3.0;  // 1/s: speed per metre of remaining distance, close to the target
 constexpr double kHeadingGain = 5.0;   // 1/s
 constexpr double kEscapeSpeed = 0.6;   // m/s, minimum speed out of a zone we are inside
+constexpr double kRobotClearance = 0.22;  // m between two robots' centres when passing (2 radii + 0.04)
+constexpr double kRobotLookAhead = 1.0;   // m along the way in which robots are gone around
 constexpr int kProjectionPasses = 4;
 
 /// Axis-aligned box [x0, x1] x [-h, h], inflated by `margin`.
@@ -177,6 +179,19 @@ RobotCommand SimpleMotionPlanner::plan(const wm::RobotState& robot, const Motion
         const Vec2 q = geom::project(p + dir * std::min(dist, 0.5), *corridor).point;
         if (auto d = detour(p, dir, dist, q, zones.placement_corridor_radius)) dir = *d;
       }
+      // Other robots: pass the nearest one on the way within kRobotLookAhead (planner I's local detour;
+      // planner II plans around all of them). A robot standing on our target is not gone around.
+      std::optional<Vec2> around_robot;
+      double nearest = kRobotLookAhead;
+      for (const Vec2& other : zones.robots) {
+        const double distance = (other - p).norm();
+        if (distance < 1e-3 || distance >= nearest || (other - target).norm() < kRobotClearance) continue;
+        if (auto d = detour(p, dir, std::min(dist, kRobotLookAhead), other, kRobotClearance)) {
+          around_robot = d;
+          nearest = distance;
+        }
+      }
+      if (around_robot) dir = *around_robot;
       const auto around_box = [&](const Box& box, bool towards_positive_x) {
         bool hit = false;
         for (int i = 1; i <= 8 && !hit; ++i) hit = box.contains(p + dir * (dist * i / 8.0));

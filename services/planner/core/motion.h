@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "services/planner/core/planner.h"
 #include "services/world_model/core/field.h"
@@ -51,6 +52,7 @@ struct Zones {
   double their_defense_margin = 0.3;     // m, robot centre distance from their defense area
   double our_defense_margin = 0.1;       // m, robot centre distance from our defense area (non-keepers)
   double field_margin = 0.05;            // m, how far beyond the field lines a centre may go
+  std::vector<Vec2> robots;              // every visible robot, ours and theirs (the planned one included)
 };
 
 /// `p` moved (minimally, a few passes) out of every zone the intent asks to avoid and into the field.

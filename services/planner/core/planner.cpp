@@ -239,8 +239,8 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   last_now = now;
 
   const wm::RefereeInfo& referee = inputs.referee.info;
-  const wm::TeamFrame frame =
-      wm::TeamFrame::make(config.team, referee.blue_team_on_positive_half.value_or(false));
+  // The team frame world_model derived from the referee's side; never re-derived here.
+  const wm::TeamFrame frame = wm::TeamFrame::with_flip(inputs.world.flipped);
   const wm::WorldState& world = inputs.world;
   const bool ball_known = world.has_ball;
   const Vec2 ball = ball_known ? Vec2(world.ball.position.head<2>()) : Vec2::Zero();
@@ -283,6 +283,9 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   s.zones.their_defense_margin =
       config.defense_area_keep_away + config.robot_radius + config.keep_away_margin;
   s.zones.our_defense_margin = config.robot_radius + 0.05;
+  s.zones.robots.clear();
+  for (const wm::RobotState& robot : robots) s.zones.robots.push_back(robot.position);
+  for (const wm::RobotState& robot : enemies) s.zones.robots.push_back(robot.position);
 
   // Inputs, a fresh intent table, tick.
   bt::Blackboard& board = tree.blackboard();

@@ -631,10 +631,59 @@ void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& o
 
 // ---- base strategy --------------------------------------------------------------------------------------
 
+/// In normal play the keeper clears a slow ball lying in our defense area or within kKeeperClearMargin of
+/// it: no field player may fetch it there (robots keep out of our area, and an attacker behind the ball
+/// would stand inside it), so without the keeper such a ball lies until the no-progress restart.
+constexpr double kKeeperClearMargin = 0.3;    // m around our defense area
+constexpr double kKeeperClearMaxSpeed = 0.8;  // m/s: a faster ball is guarded, not chased
+
+bool keeper_should_clear(const Situation& s) {
+  return s.keeper && s.ball_known && s.ball_velocity.norm() <= kKeeperClearMaxSpeed &&
+         s.field.in_our_defense_area(s.ball, kKeeperClearMargin) && s.field.in_field(s.ball);
+}
+
+/// The keeper takes the ball from behind (seen from our goal) and kicks it away from our goal: approach,
+/// align on the line goal -> ball, kick.
+void write_keeper_clearing(const Situation& s, Ids& reserved, TeamIntents& out) {
+  const wm::RobotState* keeper = find_robot(s, *s.keeper);
+  if (!keeper) return;
+  reserved.add(*s.keeper);
+  MotionIntent intent = base_intent(s, "clear_ball");
+  intent.avoid_our_defense_area = false;
+  intent.role = "goalkeeper";
+  const Vec2 u = unit_or(s.ball - s.field.our_goal_center(), Vec2(1, 0));
+  const Vec2 rel = keeper->position - s.ball;
+  const double along = rel.dot(u);
+  const double lateral = std::abs(geom::cross(u, rel));
+  const double dd = dribbler_distance(s);
+  const Vec2 heading = geom::Angle::from_radians(keeper->orientation).to_unit_vector();
+  intent.orientation = geom::angle_of(u).radians();
+  if (along < -(dd - 0.03) && along > -(dd + 0.06) && lateral < 0.03 && heading.dot(u) > std::cos(0.15)) {
+    intent.target = s.ball + u * 0.2;
+    intent.max_speed = 1.0;
+    intent.kick = KickType::kFlat;
+    intent.kick_speed = s.config->kick_speed;
+    intent.skill = "kick";
+  } else if (along < -0.06 && lateral < 0.08) {
+    intent.target = s.ball - u * (dd + 0.01);
+    intent.max_speed = 1.0;
+    intent.skill = "align";
+  } else {
+    intent.target = s.ball - u * (dd + 0.2);
+    intent.avoid_ball_radius = dd + 0.1;
+    intent.skill = "approach_ball";
+  }
+  write(s, out, *s.keeper, intent);
+}
+
 std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s, PlayMemory& memory,
                                                               TeamIntents& out) {
   begin(s, out, "base_strategy");
   Ids reserved;
+  if (keeper_should_clear(s)) {
+    write_keeper_clearing(s, reserved, out);
+    return std::nullopt;  // no field player fights the keeper for the ball (or stands in its way)
+  }
   write_keeper(s, base_intent(s, "defend"), false, reserved, out);
   if (!s.ball_known) return std::nullopt;
   std::optional<std::uint32_t> attacker = choose_closest(s, memory.kicker, s.ball);

@@ -16,6 +16,47 @@ wm::WorldModelConfig model_config(TeamColor team) {
   return config;
 }
 
+/// The simulated field in the referee's terms (the same numbers).
+referee::FieldGeometry referee_field(const sim::FieldGeometry& f) {
+  return {.field_length = f.field_length,
+          .field_width = f.field_width,
+          .goal_width = f.goal_width,
+          .goal_depth = f.goal_depth,
+          .defense_area_depth = f.penalty_area_depth,
+          .defense_area_width = f.penalty_area_width,
+          .center_circle_radius = f.center_circle_radius,
+          .penalty_mark_distance = f.goal_center_to_penalty_mark};
+}
+
+std::optional<referee::BuiltinReferee> make_referee(const PlannedMatchOptions& options) {
+  if (!options.referee) return std::nullopt;
+  const Division division =
+      options.field.field_length > sim::FieldGeometry::division_b().field_length ? Division::kA : Division::kB;
+  return referee::BuiltinReferee(*options.referee, referee_field(options.field),
+                                 {.yellow = {"yellow", 0},
+                                  .blue = {"blue", 0},
+                                  .division = division,
+                                  .max_allowed_bots = max_robots_per_team(division),
+                                  .blue_on_positive_half = options.blue_on_positive_half});
+}
+
+/// What one team's planner and world model take from the referee state (the planner's referee.state
+/// conversion, for the in-process referee: the command enums share the league's order).
+RefereeInput referee_input_of(const referee::RefereeState& state, TeamColor team) {
+  RefereeInput input;
+  input.info.command = static_cast<wm::RefereeCommand>(state.command);
+  input.info.command_counter = state.command_counter;
+  input.info.blue_team_on_positive_half = state.blue_team_on_positive_half;
+  input.info.designated_position = state.designated_position;
+  if (state.next_command) input.info.next_command = static_cast<wm::RefereeCommand>(*state.next_command);
+  input.info.yellow_goalkeeper = state.yellow.goalkeeper;
+  input.info.blue_goalkeeper = state.blue.goalkeeper;
+  const referee::TeamInfo& ours = team == TeamColor::kYellow ? state.yellow : state.blue;
+  input.our_can_place_ball = ours.can_place_ball;
+  input.our_max_allowed_bots = ours.max_allowed_bots;
+  return input;
+}
+
 }  // namespace
 
 PlannedMatch::PlannedMatch(const PlannedMatchOptions& options)
@@ -23,38 +64,90 @@ PlannedMatch::PlannedMatch(const PlannedMatchOptions& options)
                model_config(TeamColor::kBlue)),
       yellow_model_(model_config(TeamColor::kYellow)),
       robots_(options.robots),
+      builtin_(make_referee(options)),
       start_(harness_.now()),
       next_tick_(harness_.now()) {
   yellow_model_.on_geometry(wm::testing::from_sim(harness_.sim().geometry()));
   teams_.push_back({TeamColor::kBlue, Planner(planner_config(TeamColor::kBlue, options.field)), {}});
   teams_.push_back({TeamColor::kYellow, Planner(planner_config(TeamColor::kYellow, options.field)), {}});
-  referee_.info.blue_team_on_positive_half = options.blue_on_positive_half;
+  scripted_.info.blue_team_on_positive_half = options.blue_on_positive_half;
 }
 
 const wm::WorldModel& PlannedMatch::model(TeamColor team) const {
   return team == TeamColor::kBlue ? harness_.model() : yellow_model_;
 }
 
+const PlannerOutput& PlannedMatch::output(TeamColor team) const {
+  return team == teams_[0].color ? teams_[0].out : teams_[1].out;
+}
+
 wm::WorldModel& PlannedMatch::model_of(TeamColor team) {
   return team == TeamColor::kBlue ? harness_.model() : yellow_model_;
+}
+
+void PlannedMatch::start_match() {
+  if (builtin_) (void)builtin_->command(referee::Command::kStop, harness_.now());
+}
+
+RefereeInput PlannedMatch::referee_input(TeamColor team) const {
+  return builtin_ ? referee_input_of(builtin_->state(), team) : scripted_;
+}
+
+void PlannedMatch::step_referee(wm::testing::SimHarness& harness, time::Timestamp now) {
+  const sim::WorldSnapshot truth = harness.sim().snapshot();
+  referee::Observation seen{.ball_position = truth.ball.position.head<2>(),
+                            .ball_velocity = truth.ball.velocity.head<2>()};
+  for (const sim::RobotState& robot : truth.robots) {
+    seen.robots.push_back({.team = robot.key.team, .id = robot.key.id, .position = robot.position});
+  }
+  builtin_->step(seen, now);
+  // The simulator places the ball, as builtin.teleport_placement has it do for `./ssl up`.
+  const referee::RefereeState& state = builtin_->state();
+  const bool placing = state.command == referee::Command::kBallPlacementYellow ||
+                       state.command == referee::Command::kBallPlacementBlue;
+  if (!placing || !state.designated_position || teleported_for_ == state.command_counter) return;
+  teleported_for_ = state.command_counter;
+  sim::ControlRequest request;
+  request.ball = sim::BallTeleport{.x = state.designated_position->x(),
+                                   .y = state.designated_position->y(),
+                                   .z = 0.0,
+                                   .vx = 0.0,
+                                   .vy = 0.0,
+                                   .vz = 0.0};
+  if (harness.sim().apply(request).empty()) ++placements_teleported_;
+}
+
+bool PlannedMatch::run_until_final_whistle(
+    time::Duration limit, const std::function<void(const sim::DetectionFrame&, const sim::WorldSnapshot&)>& after_frame) {
+  const time::Timestamp end = harness_.now() + limit;
+  constexpr auto kChunk = std::chrono::seconds(1);
+  while (builtin_ && builtin_->state().stage != referee::Stage::kPostGame && harness_.now() < end) {
+    run(kChunk, after_frame);
+  }
+  return builtin_ && builtin_->state().stage == referee::Stage::kPostGame;
 }
 
 void PlannedMatch::tick(wm::testing::SimHarness& harness) {
   const time::Timestamp now = harness.now();
   if (now < next_tick_) return;
   next_tick_ = now + kPlannerPeriod;
-  const double t = time::to_seconds(now - start_);
-  while (next_command_ < script_.size() && script_[next_command_].at <= t + 1e-9) {
-    referee_.info.command = script_[next_command_++].command;
-    ++referee_.info.command_counter;
+  if (builtin_) {
+    step_referee(harness, now);
+  } else {
+    const double t = time::to_seconds(now - start_);
+    while (next_command_ < script_.size() && script_[next_command_].at <= t + 1e-9) {
+      scripted_.info.command = script_[next_command_++].command;
+      ++scripted_.info.command_counter;
+    }
   }
   for (Team& team : teams_) {
     wm::WorldModel& model = model_of(team.color);
-    model.on_referee(referee_.info, now);
+    const RefereeInput referee = referee_input(team.color);
+    model.on_referee(referee.info, now);
     for (const sim::RobotFeedback& f : harness.sim().feedback(team.color)) {
       model.on_feedback({.id = f.id, .ball_in_dribbler = f.dribbler_ball_contact}, now);
     }
-    const PlannerInputs inputs{.world = model.state(now), .referee = referee_, .field = model.field().size()};
+    const PlannerInputs inputs{.world = model.state(now), .referee = referee, .field = model.field().size()};
     team.planner.step(inputs, now, team.out);
     // Robots the planner does not command (not visible) stop, as robot_link does with stale commands.
     std::vector<sim::RobotCommandFor> commands;

@@ -1,22 +1,30 @@
 // PlannedMatch: a whole simulated match in one process and in LOCKSTEP on the simulated clock: the Bullet
 // simulator (realistic vision), and for each team a WorldModel fed with every camera frame, its dribbler
-// feedback and its own commands, and a Planner ticking every 10 ms on its world model's state, with a
-// scripted referee both teams see. No threads, no sleeps, no DDS: the same seed gives the same match.
-// Used by tests that check the world model against the ground truth in a realistic game and by the
-// full-match benchmark (real-time factor).
+// feedback and its own commands, and a Planner ticking every 10 ms on its world model's state. The referee
+// both teams see is either a script of commands or the built-in referee (services/referee_gateway/builtin)
+// with a profile, stepped every 10 ms on the true world, its ball placements done by the simulator as
+// `./ssl up` has them done (builtin.teleport_placement). No threads, no sleeps, no DDS: the same seed gives
+// the same match. Used by tests that check the world model against the ground truth in a realistic game,
+// by the whole-match tests and by the full-match benchmark (real-time factor).
 //
 //   testing::PlannedMatch match({.field = sim::FieldGeometry::division_b(), .robots = 6, .seed = 7});
 //   match.script({{0.0, wm::RefereeCommand::kStop}, {2.0, wm::RefereeCommand::kForceStart}});
 //   match.run(30s, [&](const sim::DetectionFrame& frame, const sim::WorldSnapshot& truth) { ... });
+//
+//   PlannedMatch refereed({.robots = 6, .referee = *referee::load_referee_profile("simulation")});
+//   refereed.start_match();                          // the operator's first STOP
+//   refereed.run_until_final_whistle(20min, nullptr);
 #pragma once
 
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "libs/common/team.h"
 #include "services/planner/core/planner.h"
+#include "services/referee_gateway/builtin/builtin_referee.h"
 #include "services/simulator/core/simulator.h"
 #include "services/world_model/core/sim_harness.h"
 #include "services/world_model/core/world_model.h"
@@ -27,7 +35,9 @@ struct PlannedMatchOptions {
   sim::FieldGeometry field = sim::FieldGeometry::division_b();
   std::uint32_t robots = 6;  // per team
   std::uint64_t seed = 1;
-  bool blue_on_positive_half = false;
+  bool blue_on_positive_half = kBlueOnPositiveHalfAtStart;  // at the start (the built-in referee swaps it)
+  /// With a profile, the built-in referee runs the match and script() is not used.
+  std::optional<referee::RefereeProfile> referee;
 };
 
 /// A referee command issued `at` seconds after the start.
@@ -44,6 +54,19 @@ class PlannedMatch {
 
   /// The referee commands of the match (both teams see them); HALT until the first one.
   void script(std::vector<ScriptedCommand> commands) { script_ = std::move(commands); }
+
+  /// With the built-in referee: the operator's STOP that starts the match (it starts in HALT).
+  void start_match();
+  /// With the built-in referee: plays until POST_GAME or until `limit` of simulated time passed; true
+  /// when the final whistle came.
+  bool run_until_final_whistle(time::Duration limit,
+                               const std::function<void(const sim::DetectionFrame&, const sim::WorldSnapshot&)>& after_frame);
+  /// The built-in referee (nullptr with a script).
+  const referee::BuiltinReferee* builtin_referee() const { return builtin_ ? &*builtin_ : nullptr; }
+  /// What `team`'s planner decided on its last tick (roles, play, commands).
+  const PlannerOutput& output(TeamColor team) const;
+  /// Ball placements the simulator did for the referee.
+  std::uint64_t placements_teleported() const { return placements_teleported_; }
 
   /// Plays `duration` of simulated time; after each camera frame was given to both world models calls
   /// `after_frame(frame, truth)` with the true world at the frame's capture instant.
@@ -65,13 +88,18 @@ class PlannedMatch {
   };
 
   void tick(wm::testing::SimHarness& harness);
+  void step_referee(wm::testing::SimHarness& harness, time::Timestamp now);
+  RefereeInput referee_input(TeamColor team) const;
   wm::WorldModel& model_of(TeamColor team);
 
   wm::testing::SimHarness harness_;  // holds the simulator and BLUE's world model
   wm::WorldModel yellow_model_;
   std::vector<Team> teams_;
   std::uint32_t robots_;
-  RefereeInput referee_;
+  RefereeInput scripted_;  // the scripted referee
+  std::optional<referee::BuiltinReferee> builtin_;
+  std::optional<std::uint32_t> teleported_for_;  // command counter of the last placement the simulator did
+  std::uint64_t placements_teleported_ = 0;
   std::vector<ScriptedCommand> script_;
   std::size_t next_command_ = 0;
   time::Timestamp start_;

@@ -60,6 +60,54 @@ std::optional<TeamColor> team_of(Command command) {
 bool is_direct_free(Command command) {
   return command == Command::kDirectFreeYellow || command == Command::kDirectFreeBlue;
 }
+bool is_kickoff(Command command) {
+  return command == Command::kPrepareKickoffYellow || command == Command::kPrepareKickoffBlue;
+}
+bool is_penalty(Command command) {
+  return command == Command::kPreparePenaltyYellow || command == Command::kPreparePenaltyBlue;
+}
+
+/// The stage the match goes to when `stage` ends; `drawn`: the score is level.
+std::optional<Stage> stage_after(Stage stage, bool extra_time, bool drawn) {
+  switch (stage) {
+    case Stage::kNormalFirstHalfPre: return Stage::kNormalFirstHalf;
+    case Stage::kNormalFirstHalf: return Stage::kNormalHalfTime;
+    case Stage::kNormalHalfTime: return Stage::kNormalSecondHalfPre;
+    case Stage::kNormalSecondHalfPre: return Stage::kNormalSecondHalf;
+    case Stage::kNormalSecondHalf: return extra_time && drawn ? Stage::kExtraTimeBreak : Stage::kPostGame;
+    case Stage::kExtraTimeBreak: return Stage::kExtraFirstHalfPre;
+    case Stage::kExtraFirstHalfPre: return Stage::kExtraFirstHalf;
+    case Stage::kExtraFirstHalf: return Stage::kExtraHalfTime;
+    case Stage::kExtraHalfTime: return Stage::kExtraSecondHalfPre;
+    case Stage::kExtraSecondHalfPre: return Stage::kExtraSecondHalf;
+    case Stage::kExtraSecondHalf: return drawn ? Stage::kPenaltyShootoutBreak : Stage::kPostGame;
+    case Stage::kPenaltyShootoutBreak: return Stage::kPenaltyShootout;
+    case Stage::kPenaltyShootout: return Stage::kPostGame;
+    case Stage::kPostGame: return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+/// Halves: their clock runs while the game runs. Breaks: their clock runs always.
+bool is_half(Stage stage) {
+  return stage == Stage::kNormalFirstHalf || stage == Stage::kNormalSecondHalf ||
+         stage == Stage::kExtraFirstHalf || stage == Stage::kExtraSecondHalf;
+}
+bool is_break(Stage stage) {
+  return stage == Stage::kNormalHalfTime || stage == Stage::kExtraTimeBreak || stage == Stage::kExtraHalfTime ||
+         stage == Stage::kPenaltyShootoutBreak;
+}
+/// The half a *_PRE stage opens when play starts.
+std::optional<Stage> half_opened_by(Stage stage) {
+  switch (stage) {
+    case Stage::kNormalFirstHalfPre: return Stage::kNormalFirstHalf;
+    case Stage::kNormalSecondHalfPre: return Stage::kNormalSecondHalf;
+    case Stage::kExtraFirstHalfPre: return Stage::kExtraFirstHalf;
+    case Stage::kExtraSecondHalfPre: return Stage::kExtraSecondHalf;
+    default: return std::nullopt;
+  }
+}
+std::size_t index_of(TeamColor team) { return team == TeamColor::kYellow ? 0 : 1; }
 
 bool is_finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
 
@@ -148,7 +196,7 @@ Status check_field_geometry(const FieldGeometry& field) {
 // Construction and inputs
 
 BuiltinReferee::BuiltinReferee(RefereeProfile profile, FieldGeometry field, MatchSetup match)
-    : profile_(std::move(profile)), field_(field) {
+    : profile_(std::move(profile)), field_(field), division_(match.division) {
   state_.source = RefereeSource::kBuiltin;
   state_.source_identifier = "builtin:" + profile_.name;
   state_.stage = Stage::kNormalFirstHalfPre;
@@ -178,13 +226,12 @@ void BuiltinReferee::step(const Observation& observation, Timestamp now) {
   update_last_touch(seen);
   track_kick(seen);
 
-  const bool timed_stage = state_.stage == Stage::kNormalFirstHalf ||
-                           state_.stage == Stage::kNormalHalfTime || state_.stage == Stage::kNormalSecondHalf;
+  const bool timed_stage = is_half(state_.stage) || is_break(state_.stage);
   if (timed_stage && state_.stage_time_left && *state_.stage_time_left <= time::Duration::zero()) {
-    const Stage following = state_.stage == Stage::kNormalFirstHalf  ? Stage::kNormalHalfTime
-                            : state_.stage == Stage::kNormalHalfTime ? Stage::kNormalSecondHalfPre
-                                                                     : Stage::kPostGame;
-    enter_stage(following, now);
+    const bool drawn = state_.yellow.score == state_.blue.score;
+    if (const std::optional<Stage> following = stage_after(state_.stage, profile_.game.extra_time.enabled, drawn)) {
+      enter_stage(*following, now);
+    }
     return;
   }
 
@@ -192,6 +239,7 @@ void BuiltinReferee::step(const Observation& observation, Timestamp now) {
   switch (phase_) {
     case Phase::kRunning:
       decision = judge_running(seen, now);
+      if (!decision && penalty_kicker_) decision = judge_kick_timeout(seen, now);
       break;
     case Phase::kPlacing:
       judge_keep_out(seen, now);
@@ -199,10 +247,14 @@ void BuiltinReferee::step(const Observation& observation, Timestamp now) {
       break;
     case Phase::kStopped:
     case Phase::kPreparing:
+      judge_keep_out(seen, now);
+      decision = automatic_continuation(seen, now);
+      break;
     case Phase::kKickPending:
       judge_keep_out(seen, now);
-      decision = automatic_continuation(now);
-      if (!decision && phase_ == Phase::kKickPending) decision = judge_kick_timeout(seen, now);
+      decision = judge_kick_timeout(seen, now);
+      // A penalty's ball in play is judged like any running ball (goal, out), and still times out.
+      if (!decision && phase_ == Phase::kRunning) decision = judge_running(seen, now);
       break;
     case Phase::kHalted:
     case Phase::kTimeout:
@@ -241,32 +293,15 @@ void BuiltinReferee::set_blue_on_positive_half(bool blue_on_positive_half) {
 }
 
 Status BuiltinReferee::next_stage(Timestamp now) {
-  Stage following = Stage::kPostGame;
-  switch (state_.stage) {
-    case Stage::kNormalFirstHalfPre:
-      following = Stage::kNormalFirstHalf;
-      break;
-    case Stage::kNormalFirstHalf:
-      following = Stage::kNormalHalfTime;
-      break;
-    case Stage::kNormalHalfTime:
-      following = Stage::kNormalSecondHalfPre;
-      break;
-    case Stage::kNormalSecondHalfPre:
-      following = Stage::kNormalSecondHalf;
-      break;
-    case Stage::kNormalSecondHalf:
-      following = Stage::kPostGame;
-      break;
-    default:
-      return Error{"no stage follows " + std::string(to_string(state_.stage))};
-  }
+  const std::optional<Stage> following =
+      stage_after(state_.stage, profile_.game.extra_time.enabled, state_.yellow.score == state_.blue.score);
+  if (!following) return Error{"no stage follows " + std::string(to_string(state_.stage))};
   if (last_now_ && now < *last_now_) {
     ++counters_.time_went_backwards;
     now = *last_now_;
   }
   begin(now);
-  enter_stage(following, now);
+  enter_stage(*following, now);
   return Status::success();
 }
 
@@ -279,8 +314,7 @@ void BuiltinReferee::begin(Timestamp now) {
     const Command command = state_.command;
     const bool clock_runs =
         command == Command::kNormalStart || command == Command::kForceStart || is_direct_free(command);
-    const bool in_half = state_.stage == Stage::kNormalFirstHalf || state_.stage == Stage::kNormalSecondHalf;
-    if (state_.stage_time_left && ((in_half && clock_runs) || state_.stage == Stage::kNormalHalfTime)) {
+    if (state_.stage_time_left && ((is_half(state_.stage) && clock_runs) || is_break(state_.stage))) {
       *state_.stage_time_left -= elapsed;
     }
     if (command == Command::kTimeoutYellow) state_.yellow.timeout_time_left -= elapsed;
@@ -289,6 +323,8 @@ void BuiltinReferee::begin(Timestamp now) {
   if (phase_ == Phase::kPlacing) {
     state_.current_action_time_remaining =
         duration_from_seconds(profile_.game.placement_timeout) - (now - command_since_);
+  } else if (phase_ == Phase::kKickPending) {
+    state_.current_action_time_remaining = duration_from_seconds(restart_timeout()) - (now - command_since_);
   }
   last_now_ = now;
   state_.packet_referee = now;
@@ -401,6 +437,7 @@ BuiltinReferee::Transition BuiltinReferee::standard_transition(Command command,
 
 void BuiltinReferee::apply(const Transition& transition, Timestamp now) {
   const Phase previous = phase_;
+  const Command previous_command = state_.command;
   const Command command = transition.command;
   state_.command = command;
   ++state_.command_counter;
@@ -410,6 +447,7 @@ void BuiltinReferee::apply(const Transition& transition, Timestamp now) {
   state_.status_message = transition.reason;
   automatic_next_ = transition.next_is_automatic;
   placement_attempt_ = transition.placement_attempt;
+  awaiting_hand_placement_ = transition.awaiting_hand_placement;
   command_since_ = now;
   keep_out_since_.clear();
   placement_ok_since_.reset();
@@ -452,19 +490,25 @@ void BuiltinReferee::apply(const Transition& transition, Timestamp now) {
       break;
   }
   // The kicker of a kickoff or penalty keeps its role through NORMAL_START.
-  if (!(command == Command::kNormalStart && phase_ == Phase::kKickPending))
-    executing_team_ = team_of(command);
+  const bool kick_of_preparation = command == Command::kNormalStart && phase_ == Phase::kKickPending;
+  const std::optional<Command> prepared = previous == Phase::kPreparing ? std::optional(previous_command) : std::nullopt;
+  if (!kick_of_preparation) executing_team_ = team_of(command);
+  penalty_kicker_.reset();
+  if (kick_of_preparation && prepared && is_penalty(*prepared)) penalty_kicker_ = team_of(*prepared);
 
   if (command == Command::kTimeoutYellow && state_.yellow.timeouts > 0) --state_.yellow.timeouts;
   if (command == Command::kTimeoutBlue && state_.blue.timeouts > 0) --state_.blue.timeouts;
   state_.current_action_time_remaining.reset();
   if (phase_ == Phase::kPlacing) {
     state_.current_action_time_remaining = duration_from_seconds(profile_.game.placement_timeout);
+  } else if (phase_ == Phase::kKickPending) {
+    state_.current_action_time_remaining = duration_from_seconds(restart_timeout());
   }
 
   const bool starts_play = command == Command::kNormalStart || command == Command::kForceStart;
-  if (starts_play && state_.stage == Stage::kNormalFirstHalfPre) enter_stage(Stage::kNormalFirstHalf, now);
-  if (starts_play && state_.stage == Stage::kNormalSecondHalfPre) enter_stage(Stage::kNormalSecondHalf, now);
+  if (starts_play) {
+    if (const std::optional<Stage> half = half_opened_by(state_.stage)) enter_stage(*half, now);
+  }
   if (phase_ == Phase::kRunning) start_running();
 }
 
@@ -478,42 +522,198 @@ void BuiltinReferee::start_running() {
 void BuiltinReferee::enter_stage(Stage stage, Timestamp now) {
   state_.stage = stage;
   state_.stage_time_left.reset();
+  const GameSettings& game = profile_.game;
+  const auto kickoff_pending = [&](TeamColor team, const std::string& reason) {
+    // The teams change sides before every half after the first.
+    set_blue_on_positive_half(!state_.blue_team_on_positive_half.value_or(kBlueOnPositiveHalfAtStart));
+    apply({.command = Command::kStop,
+           .next_command = kickoff(team),
+           .next_is_automatic = game.auto_continue,
+           .reason = reason + ": kickoff " + std::string(to_string(team))},
+          now);
+  };
+  const auto halt_for = [&](double seconds, const std::string& reason) {
+    state_.stage_time_left = duration_from_seconds(seconds);
+    apply({.command = Command::kHalt, .reason = reason}, now);
+  };
   switch (stage) {
     case Stage::kNormalFirstHalf:
     case Stage::kNormalSecondHalf:
-      state_.stage_time_left = duration_from_seconds(profile_.game.half_duration);
+      state_.stage_time_left = duration_from_seconds(game.half_duration);
+      break;
+    case Stage::kExtraFirstHalf:
+    case Stage::kExtraSecondHalf:
+      state_.stage_time_left = duration_from_seconds(game.extra_time.half_duration);
       break;
     case Stage::kNormalHalfTime:
-      state_.stage_time_left = duration_from_seconds(profile_.game.half_time);
-      apply({.command = Command::kHalt, .reason = "half time"}, now);
+      halt_for(game.half_time, "half time");
       break;
-    case Stage::kNormalSecondHalfPre: {
-      const TeamColor second_kickoff = opponent(profile_.game.kickoff_team);
+    case Stage::kExtraTimeBreak:
+      halt_for(game.extra_time.break_duration, "draw: break before extra time");
+      break;
+    case Stage::kExtraHalfTime:
+      halt_for(game.extra_time.half_time, "extra time: half time");
+      break;
+    case Stage::kPenaltyShootoutBreak:
+      halt_for(game.extra_time.shootout_break, "draw after extra time: break before the shoot-out");
+      break;
+    case Stage::kNormalSecondHalfPre:
+      kickoff_pending(opponent(game.kickoff_team), "second half");
+      break;
+    case Stage::kExtraFirstHalfPre:
+      kickoff_pending(game.kickoff_team, "extra time, first half");
+      break;
+    case Stage::kExtraSecondHalfPre:
+      kickoff_pending(opponent(game.kickoff_team), "extra time, second half");
+      break;
+    case Stage::kPenaltyShootout:
       apply({.command = Command::kStop,
-             .next_command = kickoff(second_kickoff),
-             .next_is_automatic = profile_.game.auto_continue,
-             .reason = "second half: kickoff " + std::string(to_string(second_kickoff))},
+             .next_command = penalty(game.kickoff_team),
+             .next_is_automatic = game.auto_continue,
+             .reason = "shoot-out: penalty " + std::string(to_string(game.kickoff_team))},
             now);
       break;
-    }
     case Stage::kPostGame:
       apply({.command = Command::kHalt, .reason = "match over"}, now);
       break;
-    default:
+    case Stage::kNormalFirstHalfPre:
       break;
   }
 }
 
-std::optional<BuiltinReferee::Transition> BuiltinReferee::automatic_continuation(Timestamp now) const {
-  if (now - command_since_ < duration_from_seconds(profile_.game.stop_duration)) return std::nullopt;
-  if (phase_ == Phase::kStopped && automatic_next_ && state_.next_command) {
-    return standard_transition(*state_.next_command, std::nullopt,
-                               "automatic: " + std::string(to_string(*state_.next_command)));
+std::optional<BuiltinReferee::Transition> BuiltinReferee::automatic_continuation(const CleanObservation& seen,
+                                                                                 Timestamp now) {
+  const GameSettings& game = profile_.game;
+  const time::Duration waited = now - command_since_;
+  if (waited < duration_from_seconds(game.stop_duration)) return std::nullopt;
+  if (phase_ == Phase::kStopped && state_.next_command) {
+    const Command next = *state_.next_command;
+    const std::optional<Vec2> target = placement_needed_for(next, seen.ball);
+    // The ball is placed first, even before a restart the operator will issue; without anyone to place
+    // it, nothing is issued until it was placed by hand.
+    if (target && !awaiting_hand_placement_) return placement_before(next, *target, automatic_next_);
+    if (target || !automatic_next_) return std::nullopt;
+    return standard_transition(next, std::nullopt, "automatic: " + std::string(to_string(next)));
   }
-  if (phase_ == Phase::kPreparing && profile_.game.auto_continue) {
-    return standard_transition(Command::kNormalStart, std::nullopt, "automatic: NORMAL_START");
+  if (phase_ == Phase::kPreparing && game.auto_continue) {
+    const bool ready = !is_kickoff(state_.command) || robots_ready_for_kickoff(seen);
+    if (ready || waited >= duration_from_seconds(game.prepare_timeout)) {
+      return standard_transition(Command::kNormalStart, std::nullopt,
+                                 ready ? "automatic: NORMAL_START" : "automatic: NORMAL_START (prepare timeout)");
+    }
   }
   return std::nullopt;
+}
+
+std::optional<Vec2> BuiltinReferee::placement_needed_for(Command restart, const std::optional<Vec2>& ball) const {
+  if (!ball) return std::nullopt;  // nothing to judge; the restart goes ahead
+  const auto unless_near = [&](const Vec2& spot) -> std::optional<Vec2> {
+    if ((*ball - spot).norm() <= profile_.game.placement_tolerance) return std::nullopt;
+    return spot;
+  };
+  if (is_kickoff(restart)) return unless_near(Vec2::Zero());
+  if (is_penalty(restart)) return unless_near(penalty_mark_against(opponent(*team_of(restart))));
+  if (restart != Command::kForceStart) return std::nullopt;
+  // FORCE_START: anywhere inside the field lines. A ball beyond them (in a goal, in the boundary, beyond the
+  // walls) goes to the nearest point line_distance inside them, kept kRestartDefenseAreaDistance from both
+  // defense areas.
+  const double half_length = 0.5 * field_.field_length;
+  const double half_width = 0.5 * field_.field_width;
+  if (std::abs(ball->x()) <= half_length && std::abs(ball->y()) <= half_width) return std::nullopt;
+  const double inset = profile_.rules.out_of_bounds.line_distance;
+  Vec2 spot(std::clamp(ball->x(), -(half_length - inset), half_length - inset),
+            std::clamp(ball->y(), -(half_width - inset), half_width - inset));
+  const double clear_x = half_length - field_.defense_area_depth - kRestartDefenseAreaDistance;
+  const double clear_y = 0.5 * field_.defense_area_width + kRestartDefenseAreaDistance;
+  if (std::abs(spot.x()) > clear_x && std::abs(spot.y()) < clear_y) {
+    // In front of a goal: out of the area's reach along x or along y, whichever is nearer.
+    const Vec2 along_x(sign_of(spot.x()) * clear_x, spot.y());
+    const Vec2 along_y(spot.x(), sign_of(spot.y()) * clear_y);
+    spot = (along_x - spot).norm() <= (along_y - spot).norm() ? along_x : along_y;
+  }
+  return spot;
+}
+
+BuiltinReferee::Transition BuiltinReferee::placement_before(Command restart, const Vec2& target,
+                                                             bool restart_is_automatic,
+                                                             std::optional<TeamColor> placer_choice) const {
+  // The kicker places for its own kickoff or penalty; before a FORCE_START the team that did not touch the
+  // ball last (the Game Controller draws one by lot; this stays deterministic).
+  TeamColor placer = placer_choice.value_or(
+      team_of(restart).value_or(last_touch_ ? opponent(last_touch_->team) : profile_.game.kickoff_team));
+  if (!team_info(placer).can_place_ball) placer = opponent(placer);
+  const std::string reason = "ball to (" + std::to_string(target.x()).substr(0, 5) + ", " +
+                             std::to_string(target.y()).substr(0, 5) + ") for " + std::string(to_string(restart));
+  if (!profile_.game.ball_placement || !team_info(placer).can_place_ball) {
+    return {.command = Command::kStop,
+            .next_command = restart,
+            .next_is_automatic = restart_is_automatic,
+            .awaiting_hand_placement = true,
+            .reason = reason + ": to be placed by hand"};
+  }
+  return {.command = ball_placement(placer),
+          .next_command = restart,
+          .designated_position = target,
+          .next_is_automatic = restart_is_automatic,
+          .placement_attempt = 1,
+          .reason = reason + ": placed by " + std::string(to_string(placer))};
+}
+
+bool BuiltinReferee::robots_ready_for_kickoff(const CleanObservation& seen) const {
+  const TeamColor kicking = executing_team_.value_or(profile_.game.kickoff_team);
+  int kickers_in_circle = 0;
+  for (const ObservedRobot& robot : seen.robots) {
+    const bool own_half = robot.position.x() * sign_of(goal_x_of(robot.team)) >= 0;
+    const bool in_circle = robot.position.norm() < field_.center_circle_radius + field_.robot_radius;
+    if (!own_half && !(in_circle && robot.team == kicking)) return false;
+    if (in_circle && (robot.team != kicking || ++kickers_in_circle > 1)) return false;
+  }
+  return true;
+}
+
+double BuiltinReferee::restart_timeout() const {
+  if (penalty_kicker_) return profile_.game.penalty_timeout;
+  if (is_direct_free(state_.command)) return profile_.game.free_kick_timeout.of(division_);
+  return profile_.game.kickoff_timeout;
+}
+
+std::optional<BuiltinReferee::Transition> BuiltinReferee::after_shootout_penalty(Timestamp now) {
+  if (state_.stage != Stage::kPenaltyShootout || !penalty_kicker_) return std::nullopt;
+  const TeamColor kicker = *penalty_kicker_;
+  ++shootout_taken_[index_of(kicker)];
+  const std::uint32_t rounds = profile_.game.extra_time.shootout_penalties;
+  bool decided = false;
+  for (const TeamColor team : {TeamColor::kYellow, TeamColor::kBlue}) {
+    const std::size_t us = index_of(team);
+    const std::size_t them = index_of(opponent(team));
+    // The other team cannot catch up with the kicks it has left (in the regular rounds, or to equal turns
+    // in sudden death).
+    const std::uint32_t turns = std::max(rounds, shootout_taken_[us]);
+    const std::uint32_t left = shootout_taken_[them] < turns ? turns - shootout_taken_[them] : 0;
+    if (shootout_scored_[us] > shootout_scored_[them] + left) decided = true;
+  }
+  // Sudden death (and the end of the regular rounds): a lead after equal turns.
+  if (shootout_taken_[0] == shootout_taken_[1] && shootout_taken_[0] >= rounds &&
+      shootout_scored_[0] != shootout_scored_[1]) {
+    decided = true;
+  }
+  if (decided) {
+    enter_stage(Stage::kPostGame, now);
+    return std::nullopt;
+  }
+  const TeamColor next = opponent(kicker);
+  return Transition{.command = Command::kStop,
+                    .next_command = penalty(next),
+                    .next_is_automatic = profile_.game.auto_continue,
+                    .reason = "shoot-out: penalty " + std::string(to_string(next))};
+}
+
+bool BuiltinReferee::match_decided_early() const {
+  const std::uint32_t goals = profile_.game.early_end_goals;
+  if (goals == 0) return false;
+  const std::uint32_t yellow = state_.yellow.score;
+  const std::uint32_t blue = state_.blue.score;
+  return (yellow >= goals && yellow >= blue + 2) || (blue >= goals && blue >= yellow + 2);
 }
 
 // -------------------------------------------------------------------------------------------------------
@@ -533,6 +733,7 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_running(const Cl
       if (decision) return decision;
     }
   }
+  if (state_.stage == Stage::kPenaltyShootout) return std::nullopt;  // only the penalty's end counts
   if (std::optional<Transition> decision = judge_defense_areas(seen, now)) return decision;
   return judge_progress(seen, now);
 }
@@ -546,8 +747,9 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_progress(const C
     progress_since_ = now;
     return std::nullopt;
   }
-  if (now - progress_since_ < duration_from_seconds(rule.timeout)) return std::nullopt;
-  raise({.type = GameEventType::kNoProgressInGame, .location = *seen.ball, .value = rule.timeout}, now, false);
+  const double timeout = rule.timeout.of(division_);
+  if (now - progress_since_ < duration_from_seconds(timeout)) return std::nullopt;
+  raise({.type = GameEventType::kNoProgressInGame, .location = *seen.ball, .value = timeout}, now, false);
   return Transition{.command = Command::kStop,
                     .next_command = Command::kForceStart,
                     .next_is_automatic = true,
@@ -556,16 +758,25 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_progress(const C
 
 std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_kick_timeout(const CleanObservation& seen,
                                                                              Timestamp now) {
-  const NoProgressRule& rule = profile_.rules.no_progress;
-  if (!rule.enabled || now - command_since_ < duration_from_seconds(rule.kick_timeout)) return std::nullopt;
-  GameEvent event{.type = GameEventType::kKickTimeout, .value = rule.kick_timeout};
-  if (executing_team_) event.by_team = to_team(*executing_team_);
-  event.location = seen.ball;
-  raise(std::move(event), now, false);
+  if (now - command_since_ < duration_from_seconds(restart_timeout())) return std::nullopt;
+  if (!penalty_kicker_) {
+    // A kickoff or free kick not taken in time: its ball is in play all the same (no command changes).
+    start_running();
+    return std::nullopt;
+  }
+  const TeamColor kicker = *penalty_kicker_;
+  const TeamColor defending = opponent(kicker);
+  raise({.type = GameEventType::kPenaltyKickFailed,
+         .by_team = to_team(kicker),
+         .location = seen.ball,
+         .text = "not decided within " + std::to_string(static_cast<int>(profile_.game.penalty_timeout)) + " s"},
+        now, /*is_foul=*/false);
+  if (std::optional<Transition> shootout = after_shootout_penalty(now)) return shootout;
+  if (state_.stage == Stage::kPostGame) return std::nullopt;
   return Transition{.command = Command::kStop,
-                    .next_command = Command::kForceStart,
+                    .next_command = direct_free(defending),
                     .next_is_automatic = true,
-                    .reason = "restart not taken in time: FORCE_START"};
+                    .reason = "penalty failed: free kick " + std::string(to_string(defending))};
 }
 
 std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_ball_left_field(const Vec2& ball,
@@ -595,9 +806,18 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_ball_left_field(
     GameEvent goal{.type = GameEventType::kGoal, .by_team = to_team(scoring), .location = exit};
     if (last_touch_ && last_touch_->team == scoring) goal.by_bot = last_touch_->id;
     raise(std::move(goal), now, /*is_foul=*/false);
+    if (state_.stage == Stage::kPenaltyShootout) {
+      ++shootout_scored_[index_of(scoring)];
+      return after_shootout_penalty(now);
+    }
+    if (match_decided_early()) {
+      enter_stage(Stage::kPostGame, now);
+      return std::nullopt;
+    }
     return after_goal(conceding);
   }
 
+  if (state_.stage == Stage::kPenaltyShootout) return after_shootout_penalty(now);
   const OutOfBoundsRule& rule = profile_.rules.out_of_bounds;
   if (!rule.enabled) return std::nullopt;
   const double x_sign = sign_of(exit.x());
@@ -633,10 +853,11 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_ball_left_field(
 BuiltinReferee::Transition BuiltinReferee::after_goal(TeamColor conceding_team) const {
   const std::string reason = "goal for " + std::string(to_string(opponent(conceding_team)));
   if (profile_.game.force_start_after_goal) {
-    return {.command = Command::kStop,
-            .next_command = Command::kForceStart,
-            .next_is_automatic = true,
-            .reason = reason};
+    // The ball goes back to the centre mark, then the game goes on.
+    Transition place =
+        placement_before(Command::kForceStart, Vec2::Zero(), /*restart_is_automatic=*/true, conceding_team);
+    place.reason = reason + "; " + place.reason;
+    return place;
   }
   return {.command = Command::kStop,
           .next_command = kickoff(conceding_team),
@@ -686,7 +907,7 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_placement(const 
       const Command next = state_.next_command.value_or(direct_free(placer));
       return Transition{.command = Command::kStop,
                         .next_command = next,
-                        .next_is_automatic = is_direct_free(next) || profile_.game.auto_continue,
+                        .next_is_automatic = automatic_next_ || is_direct_free(next) || profile_.game.auto_continue,
                         .reason = "ball placed by " + std::string(to_string(placer))};
     }
   }
@@ -705,15 +926,23 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_placement(const 
         now, /*is_foul=*/false);
   const TeamColor other = opponent(placer);
   const std::string reason = "placement by " + std::string(to_string(placer)) + " failed";
+  // A failed placement for a free kick gives the free kick to the other team; before a kickoff, penalty or
+  // FORCE_START the restart stays what it was.
+  const Command pending = state_.next_command.value_or(direct_free(placer));
+  const Command next = is_direct_free(pending) ? direct_free(other) : pending;
   if (placement_attempt_ == 1 && team_info(other).can_place_ball) {
     return Transition{.command = ball_placement(other),
-                      .next_command = direct_free(other),
+                      .next_command = next,
                       .designated_position = target,
+                      .next_is_automatic = automatic_next_,
                       .placement_attempt = 2,
                       .reason = reason + ": " + std::string(to_string(other)) + " places"};
   }
+  // Placed by hand: a restart that was automatic goes ahead once the ball is where it must be.
   return Transition{.command = Command::kStop,
-                    .next_command = direct_free(other),
+                    .next_command = next,
+                    .next_is_automatic = automatic_next_,
+                    .awaiting_hand_placement = true,
                     .reason = reason + ": the ball must be placed by hand"};
 }
 
@@ -845,9 +1074,14 @@ const TeamInfo& BuiltinReferee::team_info(TeamColor team) const {
 }
 
 double BuiltinReferee::goal_x_of(TeamColor defending_team) const {
-  const bool blue_positive = state_.blue_team_on_positive_half.value_or(true);
+  const bool blue_positive = state_.blue_team_on_positive_half.value_or(kBlueOnPositiveHalfAtStart);
   const bool positive = (defending_team == TeamColor::kBlue) == blue_positive;
   return (positive ? 0.5 : -0.5) * field_.field_length;
+}
+
+Vec2 BuiltinReferee::penalty_mark_against(TeamColor defending_team) const {
+  const double goal_x = goal_x_of(defending_team);
+  return {goal_x - sign_of(goal_x) * field_.penalty_mark_distance, 0};
 }
 
 TeamColor BuiltinReferee::defender_of_goal_at(double x) const {

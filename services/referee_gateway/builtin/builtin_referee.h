@@ -18,18 +18,32 @@
 //   timeout.
 // Rule decisions (goal, out of bounds, defense area) are taken only while running; keep-out is checked in
 // stopped, placing, preparing and kick pending. Automatic continuations: in STOP the pending next_command
-// is issued after the profile's stop_duration when it was marked automatic (FORCE_START after a goal with
-// force_start_after_goal; a free kick after a successful placement or a foul; a kickoff or penalty only
-// with auto_continue); a preparation gets its NORMAL_START after stop_duration only with auto_continue.
-// Nothing automatic happens during HALT or a timeout; the operator's commands always take effect.
+// is issued after the profile's stop_duration when it was marked automatic (a goal's kickoff and the
+// FORCE_START after no progress, the FORCE_START after a goal's placement with force_start_after_goal;
+// a free kick after a successful placement or a foul). A preparation gets its NORMAL_START with
+// auto_continue once stop_duration passed and the robots stand as the restart demands (kickoff: every
+// robot in its own half and outside the centre circle but the kicker), at the latest after
+// prepare_timeout. Nothing automatic happens during HALT or a timeout; the operator's commands always
+// take effect.
+//
+// Restarts always restart: before a pending kickoff, penalty or FORCE_START is issued (automatically or
+// not), the referee checks the ball. A kickoff needs it on the centre mark, a penalty on the penalty mark
+// (within placement_tolerance), a FORCE_START inside the field lines. Otherwise, with game.ball_placement,
+// it issues BALL_PLACEMENT to that point (the kicking team, for FORCE_START the team that did not touch
+// the ball last) with the restart as next_command; a placement that fails twice leaves STOP with the
+// restart pending until an operator places the ball. So a ball left in a goal, or beyond the field
+// lines, is never force-started.
 //
 // Rules (each only when the profile enables it; thresholds in m and s):
 //  * last touch: the robot nearest to the ball with centres within robot + ball radius + kTouchMargin.
 //  * goal: the ball wholly over the goal line (centre beyond it by the ball radius) where its path crossed
 //    between the posts (|y| <= goal_width / 2 - ball radius). Score for the team attacking that goal,
-//    kGoal, STOP; next: FORCE_START (force_start_after_goal, automatic) or the conceding team's kickoff.
-//    Goals within `cooldown` of the last one are ignored, and the ball must have been seen in the field
-//    since play (re)started, so a ball left lying in the goal never scores twice.
+//    kGoal, STOP; next: the conceding team's kickoff (automatic with auto_continue; the ball is placed on
+//    the centre mark first), or with force_start_after_goal at once BALL_PLACEMENT to the centre mark by
+//    the conceding team and then FORCE_START. Goals within `cooldown` of the
+//    last one are ignored, and the ball must have been seen in the field since play (re)started, so a
+//    ball left lying in the goal never scores twice. A team reaching early_end_goals with a lead of two
+//    ends the match (POST_GAME).
 //  * out of bounds: the ball wholly over a touch line or over the goal line outside the posts. Free kick
 //    for the team that did not touch it last (unknown: the defenders of that half). Placement point:
 //    line_distance inside the touch line at the exit x (kept line_distance from the goal lines); over a
@@ -42,20 +56,29 @@
 //    the other team (PREPARE_PENALTY, next NORMAL_START). An attacker entirely inside the opponent's
 //    area, or touching the ball while partly inside -> foul, STOP, then (automatic) the defenders' free
 //    kick where the ball is.
-//  * no progress (division B numbers, the profile's): the ball not moved 0.05 m for `timeout` while
-//    running, or a restart (kickoff, penalty, free kick) not taken within `kick_timeout` -> kNoProgressInGame
-//    / kKickTimeout, STOP, then FORCE_START after stop_duration (automatic).
+//  * no progress: the ball not moved 0.05 m for the division's `timeout` while running ->
+//    kNoProgressInGame, STOP, then FORCE_START after stop_duration (automatic).
+//  * restart timeouts (game settings, rules 5.3): a kickoff's ball is in play kickoff_timeout after
+//    NORMAL_START, a free kick's free_kick_timeout after the command, kicked or not (no command changes;
+//    current_action_time_remaining counts down to it). A penalty still undecided penalty_timeout after
+//    NORMAL_START failed: kPenaltyKickFailed, STOP, goal kick (free kick) for the defenders.
 //  * keep-out: in STOP every robot, during a restart (placement, preparation, free kick before the ball
 //    is in play) the other team's robots, must keep `radius` between their nearest side and the ball (for
 //    a placement: the segment ball -> target). Inside for `violation_persistence` -> one foul per stay
 //    (foul_counter +1); the command does not change.
 // game_events holds the events since the ball was last in play, each with a unique id "builtin-<n>".
 //
-// Stages: NORMAL_FIRST_HALF_PRE -> (NORMAL_START / FORCE_START) NORMAL_FIRST_HALF -> (half_duration of
-// playing time) NORMAL_HALF_TIME with HALT -> (half_time) NORMAL_SECOND_HALF_PRE with STOP and the other
-// team's kickoff pending -> NORMAL_SECOND_HALF -> POST_GAME with HALT. The halves' clock runs only while
-// the game runs (NORMAL_START, FORCE_START, DIRECT_FREE_*), as the Game Controller's does; the half-time
-// clock runs always. next_stage() advances by hand with the same effects. No extra time or shoot-out.
+// Stages, as the Game Controller runs them: NORMAL_FIRST_HALF_PRE -> (NORMAL_START / FORCE_START)
+// NORMAL_FIRST_HALF -> (half_duration of playing time) NORMAL_HALF_TIME with HALT -> (half_time)
+// NORMAL_SECOND_HALF_PRE with STOP and the other team's kickoff pending -> NORMAL_SECOND_HALF ->
+// POST_GAME with HALT. With extra_time enabled and a draw: EXTRA_TIME_BREAK (HALT) -> EXTRA_FIRST_HALF_PRE
+// -> EXTRA_FIRST_HALF -> EXTRA_HALF_TIME -> EXTRA_SECOND_HALF_PRE -> EXTRA_SECOND_HALF, and if still
+// drawn PENALTY_SHOOTOUT_BREAK -> PENALTY_SHOOTOUT: penalties in turn (the first half's kickoff team
+// first), shootout_penalties each, then sudden death, until one team leads after equal turns or can no
+// longer be caught; then POST_GAME. The teams change sides (blue_team_on_positive_half flips) on entering
+// every *_PRE stage after the first and the shoot-out. The halves' clock runs only while the game runs
+// (NORMAL_START, FORCE_START, DIRECT_FREE_*), as the Game Controller's does; the breaks' clock runs
+// always. next_stage() advances by hand with the same effects.
 //
 //   BuiltinReferee referee(*load_referee_profile("strict_ai"), FieldGeometry::division_b(),
 //                          {.yellow = {"ER-Force", 0}, .blue = {"TIGERs", 1}, .max_allowed_bots = 6});
@@ -71,6 +94,7 @@
 #include <utility>
 #include <vector>
 
+#include "libs/common/division.h"
 #include "libs/common/result.h"
 #include "libs/common/team.h"
 #include "libs/geometry/vec2.h"
@@ -109,8 +133,9 @@ struct TeamSetup {
 struct MatchSetup {
   TeamSetup yellow;
   TeamSetup blue;
+  Division division = Division::kB;  // the rules' division-dependent timers
   std::uint32_t max_allowed_bots = 6;  // per team: 11 in division A, 6 in division B
-  bool blue_on_positive_half = true;   // blue defends the goal at +x
+  bool blue_on_positive_half = kBlueOnPositiveHalfAtStart;  // blue defends the goal at +x (first half)
 };
 
 /// One vision frame as the referee needs it (SSL-Vision global frame, m, m/s).
@@ -149,6 +174,7 @@ class BuiltinReferee {
   static constexpr std::uint32_t kTimeoutsPerTeam = 4;
   static constexpr double kTimeoutBudget = 300;              // s per team
   static constexpr std::uint32_t kMaxPlacementFailures = 5;  // then the team may no longer place
+  static constexpr double kRestartDefenseAreaDistance = 1.0;  // m a restart's ball keeps from defense areas
 
   /// Starts in NORMAL_FIRST_HALF_PRE with HALT and the profile's kickoff as next_command (issued after a
   /// STOP by itself with auto_continue). The first step() or command() stamps the initial command time.
@@ -162,7 +188,7 @@ class BuiltinReferee {
   /// (deprecated), values outside the enum, a placement without a valid target.
   Status command(Command command, time::Timestamp now, std::optional<geom::Vec2> designated_position = {});
 
-  /// Which goal blue defends (usually swapped by the operator at half time). Not a new command.
+  /// Which goal blue defends (the referee swaps it by itself at half time). Not a new command.
   void set_blue_on_positive_half(bool blue_on_positive_half);
 
   /// Advances to the next stage by hand (see the header comment); an error in POST_GAME.
@@ -185,6 +211,7 @@ class BuiltinReferee {
     std::optional<geom::Vec2> designated_position;
     bool next_is_automatic = false;  // STOP: issue next_command after stop_duration
     int placement_attempt = 0;       // BALL_PLACEMENT: 1 the first team, 2 the other after a failure
+    bool awaiting_hand_placement = false;  // STOP: nobody places; the restart waits for the ball
     std::string reason;              // status_message
   };
 
@@ -219,7 +246,20 @@ class BuiltinReferee {
   std::optional<Transition> judge_placement(const CleanObservation& observation, time::Timestamp now);
   std::optional<Transition> judge_progress(const CleanObservation& observation, time::Timestamp now);
   std::optional<Transition> judge_kick_timeout(const CleanObservation& observation, time::Timestamp now);
-  std::optional<Transition> automatic_continuation(time::Timestamp now) const;
+  std::optional<Transition> automatic_continuation(const CleanObservation& observation, time::Timestamp now);
+  /// Where the ball must be placed before `restart` can be issued (nullopt: it may be issued now).
+  std::optional<geom::Vec2> placement_needed_for(Command restart, const std::optional<geom::Vec2>& ball) const;
+  /// BALL_PLACEMENT before `restart` (by `placer`, else the restart's team, else the team that did not touch
+  /// the ball last), or STOP until the ball is placed by hand when no team may place.
+  Transition placement_before(Command restart, const geom::Vec2& target, bool restart_is_automatic,
+                              std::optional<TeamColor> placer = std::nullopt) const;
+  bool robots_ready_for_kickoff(const CleanObservation& observation) const;
+  /// s the current kick-pending restart may wait for its kick (kickoff, free kick, penalty).
+  double restart_timeout() const;
+  /// A penalty's end (goal, failure, ball out): the shoot-out's next turn or the match's end, or nothing
+  /// outside the shoot-out.
+  std::optional<Transition> after_shootout_penalty(time::Timestamp now);
+  bool match_decided_early() const;
   void judge_keep_out(const CleanObservation& observation, time::Timestamp now);
 
   Transition free_kick_after_ball_left(TeamColor kicking_team, const geom::Vec2& placement_point,
@@ -231,9 +271,11 @@ class BuiltinReferee {
   const TeamInfo& team_info(TeamColor team) const;
   double goal_x_of(TeamColor defending_team) const;  // +-field_length/2
   TeamColor defender_of_goal_at(double x) const;     // the team defending the goal on x's side
+  geom::Vec2 penalty_mark_against(TeamColor defending_team) const;
 
   RefereeProfile profile_;
   FieldGeometry field_;
+  Division division_;
   RefereeState state_;
   InputCounters counters_;
 
@@ -257,6 +299,11 @@ class BuiltinReferee {
   std::optional<time::Timestamp> last_goal_;
 
   int placement_attempt_ = 0;                          // 1: first team, 2: the other team after a failure
+  bool awaiting_hand_placement_ = false;  // both teams failed: no automatic placement until a restart
+  std::optional<TeamColor> penalty_kicker_;  // from a penalty's NORMAL_START until it is decided
+  // Shoot-out: penalties taken and scored per team (index: TeamColor).
+  std::uint32_t shootout_taken_[2] = {0, 0};
+  std::uint32_t shootout_scored_[2] = {0, 0};
   std::optional<time::Timestamp> placement_ok_since_;  // ball placed and at rest since
 
   // Keep-out: since when each robot (team, id) has been too close, and whether it was already reported.

@@ -1,6 +1,6 @@
 // The built-in referee driven by scripted observations at explicit times (no sleeps, no threads). Field:
 // division B (9 x 6 m, goals 1 m wide, defense areas 2 x 1 m); blue defends the goal at +x unless a test
-// says otherwise, so yellow attacks +x.
+// says otherwise (kBlueOnPositive; a match starts with blue on the negative half), so yellow attacks +x.
 #include "services/referee_gateway/builtin/builtin_referee.h"
 
 #include <gtest/gtest.h>
@@ -29,6 +29,9 @@ RefereeProfile builtin_profile(const char* name) {
   return profile ? *profile : RefereeProfile{};
 }
 
+/// Blue defends +x (the default is the other half): the setup of most tests here.
+const MatchSetup kBlueOnPositive{.blue_on_positive_half = true};
+
 ObservedRobot yellow(std::uint32_t id, Vec2 position) { return {TeamColor::kYellow, id, position}; }
 ObservedRobot blue(std::uint32_t id, Vec2 position) { return {TeamColor::kBlue, id, position}; }
 
@@ -39,7 +42,7 @@ Observation ball_at(Vec2 ball, std::vector<ObservedRobot> robots = {}) {
 /// A referee in NORMAL_FIRST_HALF with the ball in play (FORCE_START at t = 0).
 BuiltinReferee running_referee(RefereeProfile profile) {
   BuiltinReferee referee(std::move(profile), FieldGeometry::division_b(),
-                         {.yellow = {"Yellow FC", 0}, .blue = {"Blue FC", 0}});
+                         {.yellow = {"Yellow FC", 0}, .blue = {"Blue FC", 0}, .blue_on_positive_half = true});
   EXPECT_TRUE(referee.command(Command::kForceStart, at(0)));
   return referee;
 }
@@ -71,11 +74,11 @@ TEST(BuiltinReferee, StartsHaltedBeforeTheFirstHalfWithTheKickoffPending) {
   EXPECT_TRUE(state.yellow.can_place_ball);
   EXPECT_EQ(state.blue.max_allowed_bots, 11u);
   EXPECT_EQ(state.yellow.timeouts, 4u);
-  EXPECT_EQ(state.blue_team_on_positive_half, true);
+  EXPECT_EQ(state.blue_team_on_positive_half, false) << "blue starts on the negative half, as with a GC";
 }
 
 TEST(BuiltinReferee, EveryCommandIncrementsTheCounterAndIsStampedWithItsTime) {
-  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
   referee.step(ball_at({0, 0}), at(0));
   EXPECT_EQ(referee.state().command_referee, at(0)) << "the initial HALT is stamped by the first step";
   EXPECT_EQ(referee.state().packet_referee, at(0));
@@ -92,7 +95,7 @@ TEST(BuiltinReferee, EveryCommandIncrementsTheCounterAndIsStampedWithItsTime) {
 }
 
 TEST(BuiltinReferee, OperatorCommandsSetNextCommandDesignatedPositionAndTimeouts) {
-  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
   ASSERT_TRUE(referee.command(Command::kPrepareKickoffBlue, at(0)));
   EXPECT_EQ(referee.state().next_command, Command::kNormalStart);
   referee.step(ball_at({0, 0}), at(0.5));
@@ -134,7 +137,8 @@ TEST(BuiltinReferee, StagesRunOnPlayingTimeThenHalfTimeThenTheSecondHalfKickoffO
   RefereeProfile profile = builtin_profile("strict_ai");
   profile.game.half_duration = 10;
   profile.game.half_time = 5;
-  BuiltinReferee referee(profile, FieldGeometry::division_b());
+  profile.game.extra_time.enabled = false;
+  BuiltinReferee referee(profile, FieldGeometry::division_b(), kBlueOnPositive);
   ASSERT_TRUE(referee.command(Command::kForceStart, at(0)));
   EXPECT_EQ(referee.state().stage, Stage::kNormalFirstHalf);
   referee.step(ball_at({0, 0}), at(4));
@@ -151,8 +155,10 @@ TEST(BuiltinReferee, StagesRunOnPlayingTimeThenHalfTimeThenTheSecondHalfKickoffO
   EXPECT_EQ(referee.state().stage_time_left, duration_from_seconds(5));
   referee.step(ball_at({0, 0}), at(16));
   EXPECT_EQ(referee.state().stage_time_left, duration_from_seconds(2)) << "half time runs in HALT";
+  EXPECT_EQ(referee.state().blue_team_on_positive_half, true);
   referee.step(ball_at({0, 0}), at(18));
   EXPECT_EQ(referee.state().stage, Stage::kNormalSecondHalfPre);
+  EXPECT_EQ(referee.state().blue_team_on_positive_half, false) << "the teams change sides at half time";
   EXPECT_EQ(referee.state().command, Command::kStop);
   EXPECT_EQ(referee.state().next_command, Command::kPrepareKickoffBlue);
   EXPECT_FALSE(referee.state().stage_time_left);
@@ -170,7 +176,7 @@ TEST(BuiltinReferee, StagesRunOnPlayingTimeThenHalfTimeThenTheSecondHalfKickoffO
 }
 
 TEST(BuiltinReferee, ArcadeRunsTheKickoffByItselfAfterOneStop) {
-  BuiltinReferee referee(builtin_profile("arcade"), FieldGeometry::division_b());
+  BuiltinReferee referee(builtin_profile("arcade"), FieldGeometry::division_b(), kBlueOnPositive);
   referee.step(ball_at({0, 0}), at(0));
   ASSERT_TRUE(referee.command(Command::kStop, at(1)));
   referee.step(ball_at({0, 0}), at(2.9));
@@ -229,9 +235,22 @@ TEST_P(GoalTest, ScoresForTheAttackersStopsAndNamesTheKickoffOfTheTeamThatConced
   ASSERT_TRUE(goal->location);
   EXPECT_NEAR(goal->location->x(), c.goal_x_sign * (4.5 + 0.0215), 1e-9);
 
-  referee.step(ball_at({c.goal_x_sign * 4.6, 0.1}), at(20));
-  EXPECT_EQ(referee.state().command, Command::kStop) << "strict_ai waits for the operator";
-  EXPECT_EQ(referee.state().command_counter, counter + 1);
+  // After stop_duration the team that kicks off places the ball on the centre mark (the restart stays).
+  referee.step(ball_at({c.goal_x_sign * 4.6, 0.1}), at(3.09));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  referee.step(ball_at({c.goal_x_sign * 4.6, 0.1}), at(3.11));
+  const Command placement =
+      c.kickoff == Command::kPrepareKickoffBlue ? Command::kBallPlacementBlue : Command::kBallPlacementYellow;
+  EXPECT_EQ(referee.state().command, placement);
+  expect_near(referee.state().designated_position, {0, 0});
+  EXPECT_EQ(referee.state().next_command, c.kickoff);
+  referee.step(ball_at({0.05, 0}), at(5));
+  referee.step(ball_at({0.05, 0}), at(5.5));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, c.kickoff);
+  referee.step(ball_at({0.05, 0}), at(20));
+  EXPECT_EQ(referee.state().command, Command::kStop) << "strict_ai waits for the operator's kickoff";
+  EXPECT_EQ(referee.state().command_counter, counter + 3);
 }
 
 INSTANTIATE_TEST_SUITE_P(BothGoalsBothTeams, GoalTest,
@@ -258,19 +277,25 @@ TEST(BuiltinReferee, ABallBesideThePostIsNoGoal) {
   EXPECT_EQ(referee.state().command, Command::kForceStart);
 }
 
-TEST(BuiltinReferee, ArcadeForceStartsAfterStopDurationAndTheBallLeftInTheGoalScoresNoMore) {
+TEST(BuiltinReferee, ArcadePlacesTheBallOnTheCentreMarkAfterAGoalThenForceStarts) {
   BuiltinReferee referee = running_referee(builtin_profile("arcade"));
   referee.step(ball_at({4.0, 0.0}), at(1));
   referee.step(ball_at({4.6, 0.0}), at(1.1));
-  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().yellow.score, 1u);
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementBlue) << "the conceding team places";
+  expect_near(referee.state().designated_position, {0, 0});
   EXPECT_EQ(referee.state().next_command, Command::kForceStart);
-  referee.step(ball_at({4.6, 0.0}), at(3.05));
+  referee.step(ball_at({4.6, 0.0}), at(10));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementBlue) << "never FORCE_START a ball in the goal";
+  referee.step(ball_at({0.0, 0.1}), at(11));
+  referee.step(ball_at({0.0, 0.1}), at(11.5));
   EXPECT_EQ(referee.state().command, Command::kStop);
-  referee.step(ball_at({4.6, 0.0}), at(3.1));
-  EXPECT_EQ(referee.state().command, Command::kForceStart);
+  referee.step(ball_at({0.0, 0.1}), at(13.45));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  referee.step(ball_at({0.0, 0.1}), at(13.55));
+  EXPECT_EQ(referee.state().command, Command::kForceStart) << "after stop_duration";
   EXPECT_TRUE(referee.game_running());
   EXPECT_TRUE(referee.state().game_events.empty()) << "game events are cleared when play resumes";
-  referee.step(ball_at({4.6, 0.0}), at(10));
   EXPECT_EQ(referee.state().yellow.score, 1u);
 }
 
@@ -281,20 +306,22 @@ TEST(BuiltinReferee, GoalsWithinTheCooldownAreIgnored) {
   BuiltinReferee referee = running_referee(profile);
   referee.step(ball_at({4.0, 0.0}), at(1));
   referee.step(ball_at({4.6, 0.0}), at(1.1));
-  referee.step(ball_at({0.0, 0.0}), at(1.6));  // automatic FORCE_START, ball back in the field
+  referee.step(ball_at({0.0, 0.0}), at(1.15));  // placed on the centre mark ...
+  referee.step(ball_at({0.0, 0.0}), at(1.65));  // ... and held: STOP
+  referee.step(ball_at({0.0, 0.0}), at(2.15));  // automatic FORCE_START
   EXPECT_EQ(referee.state().command, Command::kForceStart);
-  referee.step(ball_at({-4.0, 0.0}), at(2));
+  referee.step(ball_at({-4.0, 0.0}), at(2.5));
   referee.step(ball_at({-4.6, 0.0}), at(3));  // 1.9 s after the first goal
   EXPECT_EQ(referee.state().blue.score, 0u);
   EXPECT_EQ(referee.state().command, Command::kForceStart);
   referee.step(ball_at({-4.0, 0.0}), at(6.5));
   referee.step(ball_at({-4.6, 0.0}), at(7));
   EXPECT_EQ(referee.state().blue.score, 1u);
-  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow);
 }
 
 TEST(BuiltinReferee, NoGoalIsJudgedWhileStopped) {
-  BuiltinReferee referee(builtin_profile("arcade"), FieldGeometry::division_b());
+  BuiltinReferee referee(builtin_profile("arcade"), FieldGeometry::division_b(), kBlueOnPositive);
   ASSERT_TRUE(referee.command(Command::kStop, at(0)));
   referee.step(ball_at({4.0, 0.0}), at(1));
   referee.step(ball_at({4.6, 0.0}), at(1.1));
@@ -435,7 +462,7 @@ TEST(BuiltinReferee, APlacementTimeoutHandsThePlacementToTheOtherTeamThenToTheOp
 }
 
 TEST(BuiltinReferee, FiveFailedPlacementsTakeAwayTheRightToPlace) {
-  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
   double t = 0;
   for (int failure = 0; failure < 5; ++failure) {
     ASSERT_TRUE(referee.command(Command::kBallPlacementBlue, at(t), Vec2(0, 0)));
@@ -498,7 +525,7 @@ TEST(BuiltinReferee, AnAttackerTouchingTheBallPartlyInsideTheAreaIsAFoul) {
 // Keep-out
 
 TEST(BuiltinReferee, ARobotTooCloseDuringStopFoulsOnceAfterThePersistence) {
-  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
   ASSERT_TRUE(referee.command(Command::kStop, at(0)));
   const std::uint32_t counter = referee.state().command_counter;
   const Observation close = ball_at({0, 0}, {yellow(1, {0.3, 0.0}), blue(2, {0.8, 0.0})});
@@ -525,7 +552,7 @@ TEST(BuiltinReferee, ARobotTooCloseDuringStopFoulsOnceAfterThePersistence) {
 }
 
 TEST(BuiltinReferee, DuringAFreeKickOnlyTheOtherTeamMustKeepOut) {
-  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
   ASSERT_TRUE(referee.command(Command::kDirectFreeYellow, at(0)));
   const Observation close = ball_at({0, 0}, {yellow(1, {0.12, 0.0}), blue(2, {-0.3, 0.0})});
   referee.step(close, at(0.1));
@@ -536,7 +563,7 @@ TEST(BuiltinReferee, DuringAFreeKickOnlyTheOtherTeamMustKeepOut) {
 }
 
 TEST(BuiltinReferee, DuringPlacementThePathToTheTargetIsKeptClear) {
-  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
   ASSERT_TRUE(referee.command(Command::kBallPlacementBlue, at(0), Vec2(2.0, 0.0)));
   const Observation near_path = ball_at({0, 0}, {yellow(3, {1.0, 0.3}), blue(2, {0.1, 0.0})});
   referee.step(near_path, at(0.1));
@@ -608,8 +635,8 @@ TEST(BuiltinReferee, BadInputIsIgnoredAndCounted) {
 }
 
 TEST(BuiltinReferee, TheSameInputsGiveTheSameStates) {
-  BuiltinReferee first(builtin_profile("strict_ai"), FieldGeometry::division_b());
-  BuiltinReferee second(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  BuiltinReferee first(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  BuiltinReferee second(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
   std::uint64_t seed = 12345;
   const auto uniform = [&seed](double low, double high) {
     seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
@@ -639,7 +666,7 @@ TEST(BuiltinReferee, TheSameInputsGiveTheSameStates) {
 TEST(BuiltinReferee, ARestingBallSeenWithDetectionNoiseAndNoVelocityIsPlaced) {
   // Vision gives positions only, each with a few millimetres of noise; 10 ms apart that alone looks like
   // 0.4 m/s. The speed is estimated over 0.1 s, so the ball at the target is at rest.
-  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
   ASSERT_TRUE(referee.command(Command::kBallPlacementYellow, at(0), Vec2(1.0, -2.0)));
   for (int i = 0; i <= 200; ++i) {
     const double noise = (i % 2 == 0 ? 0.003 : -0.003) * ((i % 3) + 1) / 3.0;
@@ -672,18 +699,289 @@ TEST(BuiltinReferee, ABallThatRestsTenSecondsWhileRunningIsRestartedWithForceSta
   EXPECT_EQ(referee.state().command, Command::kForceStart) << "FORCE_START after stop_duration (2 s)";
 }
 
-TEST(BuiltinReferee, AFreeKickNotTakenInTimeIsRestartedWithForceStart) {
-  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b());
+// ---------------------------------------------------------------------------------------------------------
+// Restart timeouts (rules 5.3): the ball is in play after them, kicked or not; a penalty fails.
+
+struct RestartTimeoutCase {
+  Division division;
+  bool kickoff;    // else a free kick
+  double timeout;  // s the rules give
+};
+
+std::string restart_timeout_case_name(const ::testing::TestParamInfo<RestartTimeoutCase>& param_info) {
+  return std::string(param_info.param.kickoff ? "Kickoff" : "FreeKick") + "Division" +
+         (param_info.param.division == Division::kA ? "A" : "B");
+}
+
+class RestartTimeoutTest : public ::testing::TestWithParam<RestartTimeoutCase> {};
+
+TEST_P(RestartTimeoutTest, TheBallIsInPlayAtTheTimeoutWithoutACommand) {
+  const RestartTimeoutCase c = GetParam();
+  MatchSetup setup = kBlueOnPositive;
+  setup.division = c.division;
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), setup);
   ASSERT_TRUE(referee.command(Command::kStop, at(0)));
-  ASSERT_TRUE(referee.command(Command::kDirectFreeBlue, at(1)));
-  for (double t = 1; t <= 10.9; t += 0.01) referee.step(ball_at({-1.0, 0.5}), at(t));
-  EXPECT_EQ(referee.state().command, Command::kDirectFreeBlue);
-  for (double t = 10.9; t <= 11.05; t += 0.01) referee.step(ball_at({-1.0, 0.5}), at(t));
-  EXPECT_EQ(referee.state().command, Command::kStop) << "10 s after DIRECT_FREE_BLUE";
+  if (c.kickoff) {
+    ASSERT_TRUE(referee.command(Command::kPrepareKickoffBlue, at(0.5)));
+    ASSERT_TRUE(referee.command(Command::kNormalStart, at(1)));
+  } else {
+    ASSERT_TRUE(referee.command(Command::kDirectFreeBlue, at(1)));
+  }
+  const Command command = referee.state().command;
+  referee.step(ball_at({0.0, 0.0}), at(1.5));
+  EXPECT_NEAR(time::to_seconds(*referee.state().current_action_time_remaining), c.timeout - 0.5, 1e-9);
+  referee.step(ball_at({0.0, 0.0}), at(1 + c.timeout - 0.01));
+  EXPECT_FALSE(referee.game_running()) << "just inside the timeout";
+  referee.step(ball_at({0.0, 0.0}), at(1 + c.timeout + 0.01));
+  EXPECT_TRUE(referee.game_running()) << "just past the timeout";
+  EXPECT_EQ(referee.state().command, command) << "no command changes";
+  EXPECT_EQ(last_event(referee), nullptr) << "KICK_TIMEOUT is deprecated; nothing is raised";
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltinReferee, RestartTimeoutTest,
+                         ::testing::Values(RestartTimeoutCase{Division::kB, true, 10.0},
+                                           RestartTimeoutCase{Division::kA, true, 10.0},
+                                           RestartTimeoutCase{Division::kB, false, 10.0},
+                                           RestartTimeoutCase{Division::kA, false, 5.0}),
+                         restart_timeout_case_name);
+
+TEST(BuiltinReferee, APenaltyUndecidedAfterTenSecondsFailsAndGivesTheDefendersAGoalKick) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  ASSERT_TRUE(referee.command(Command::kPreparePenaltyYellow, at(0)));
+  ASSERT_TRUE(referee.command(Command::kNormalStart, at(1)));
+  // Yellow attacks +x: the mark is 6 m from blue's goal at +4.5.
+  referee.step(ball_at({-1.5, 0.0}), at(1.5));
+  referee.step(ball_at({-1.3, 0.0}), at(2));  // kicked softly: in play, rolling, then resting short
+  EXPECT_TRUE(referee.game_running());
+  referee.step(ball_at({-1.0, 0.0}), at(10.99));
+  EXPECT_EQ(referee.state().command, Command::kNormalStart) << "just inside 10 s";
+  referee.step(ball_at({-1.0, 0.0}), at(11.01));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
   ASSERT_NE(last_event(referee), nullptr);
-  EXPECT_EQ(last_event(referee)->type, GameEventType::kKickTimeout);
-  EXPECT_EQ(last_event(referee)->by_team, Team::kBlue);
-  EXPECT_EQ(referee.state().next_command, Command::kForceStart);
+  EXPECT_EQ(last_event(referee)->type, GameEventType::kPenaltyKickFailed);
+  EXPECT_EQ(last_event(referee)->by_team, Team::kYellow);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Restarts always restart: the ball is placed where the restart needs it
+
+TEST(BuiltinReferee, TheSimulationProfileRunsAGoalThroughPlacementAndKickoffBackToPlay) {
+  BuiltinReferee referee = running_referee(builtin_profile("simulation"));
+  referee.step(ball_at({4.0, 0.0}, {yellow(2, {3.88, 0.0})}), at(1));
+  referee.step(ball_at({4.6, 0.0}), at(1.1));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kPrepareKickoffBlue);
+  referee.step(ball_at({4.6, 0.0}), at(3.11));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementBlue);
+  referee.step(ball_at({0.0, 0.0}), at(3.2));  // the simulator puts it there
+  referee.step(ball_at({0.0, 0.0}), at(3.7));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  referee.step(ball_at({0.0, 0.0}), at(5.71));
+  EXPECT_EQ(referee.state().command, Command::kPrepareKickoffBlue);
+  // A yellow robot inside the centre circle: no NORMAL_START until it leaves.
+  referee.step(ball_at({0.0, 0.0}, {yellow(1, {-0.4, 0.0}), blue(0, {0.2, 0.0})}), at(8));
+  EXPECT_EQ(referee.state().command, Command::kPrepareKickoffBlue);
+  referee.step(ball_at({0.0, 0.0}, {yellow(1, {-0.7, 0.0}), blue(0, {0.2, 0.0})}), at(8.1));
+  EXPECT_EQ(referee.state().command, Command::kNormalStart) << "everybody in position";
+  referee.step(ball_at({-0.1, 0.0}), at(8.5));
+  EXPECT_TRUE(referee.game_running());
+}
+
+TEST(BuiltinReferee, AKickoffGetsItsNormalStartAtThePrepareTimeoutEvenIfRobotsAreOutOfPosition) {
+  BuiltinReferee referee(builtin_profile("simulation"), FieldGeometry::division_b(), kBlueOnPositive);
+  ASSERT_TRUE(referee.command(Command::kPrepareKickoffYellow, at(0)));
+  const Observation blocked = ball_at({0, 0}, {blue(1, {0.3, 0.0})});  // blue in the circle
+  referee.step(blocked, at(9.99));
+  EXPECT_EQ(referee.state().command, Command::kPrepareKickoffYellow);
+  referee.step(blocked, at(10.01));
+  EXPECT_EQ(referee.state().command, Command::kNormalStart);
+}
+
+TEST(BuiltinReferee, NoProgressWithTheBallBeyondTheLinesPlacesItBeforeTheForceStart) {
+  RefereeProfile profile = builtin_profile("simulation");
+  profile.rules.out_of_bounds.enabled = false;  // the ball may lie out there while running
+  profile.rules.goal_detection.enabled = false;
+  for (const auto& [ball, target] : {std::pair{Vec2(1.0, 3.2), Vec2(1.0, 2.8)},     // in the boundary
+                                     std::pair{Vec2(4.6, 0.1), Vec2(2.5, 0.1)},     // in blue's goal
+                                     std::pair{Vec2(-4.7, -1.6), Vec2(-4.3, -2.0)}}) {  // beside a goal
+    BuiltinReferee referee = running_referee(profile);
+    referee.step(ball_at(ball, {blue(3, ball + Vec2(0.0, 0.11))}), at(0.5));
+    for (double t = 1; t <= 10.6; t += 0.1) referee.step(ball_at(ball), at(t));
+    ASSERT_EQ(referee.state().command, Command::kStop) << "no progress at " << ball.transpose();
+    EXPECT_EQ(referee.state().next_command, Command::kForceStart);
+    referee.step(ball_at(ball), at(12.7));
+    EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow)
+        << "placed first, by the team that did not touch it last";
+    expect_near(referee.state().designated_position, target);
+    EXPECT_EQ(referee.state().next_command, Command::kForceStart);
+    referee.step(ball_at(target), at(13));
+    referee.step(ball_at(target), at(13.5));
+    referee.step(ball_at(target), at(15.6));
+    EXPECT_EQ(referee.state().command, Command::kForceStart);
+  }
+}
+
+TEST(BuiltinReferee, WithoutBallPlacementTheKickoffWaitsUntilTheBallIsOnTheCentreMarkByHand) {
+  RefereeProfile profile = builtin_profile("simulation");
+  profile.game.ball_placement = false;
+  BuiltinReferee referee = running_referee(profile);
+  referee.step(ball_at({4.0, 0.0}), at(1));
+  referee.step(ball_at({4.6, 0.0}), at(1.1));
+  referee.step(ball_at({4.6, 0.0}), at(3.2));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_NE(referee.state().status_message.find("by hand"), std::string::npos) << referee.state().status_message;
+  referee.step(ball_at({4.6, 0.0}), at(30));
+  EXPECT_EQ(referee.state().command, Command::kStop) << "never a kickoff with the ball in the goal";
+  referee.step(ball_at({0.1, 0.0}), at(31));
+  EXPECT_EQ(referee.state().command, Command::kPrepareKickoffBlue) << "placed by hand: the kickoff follows";
+}
+
+TEST(BuiltinReferee, AFailedPlacementBeforeAKickoffKeepsTheKickoff) {
+  BuiltinReferee referee = running_referee(builtin_profile("simulation"));
+  referee.step(ball_at({4.0, 0.0}), at(1));
+  referee.step(ball_at({4.6, 0.0}), at(1.1));
+  referee.step(ball_at({4.6, 0.0}), at(3.2));
+  ASSERT_EQ(referee.state().command, Command::kBallPlacementBlue);
+  referee.step(ball_at({4.6, 0.0}), at(33.3));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow) << "the other team tries";
+  EXPECT_EQ(referee.state().next_command, Command::kPrepareKickoffBlue);
+  referee.step(ball_at({4.6, 0.0}), at(63.4));
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kPrepareKickoffBlue);
+  referee.step(ball_at({4.6, 0.0}), at(70));
+  EXPECT_EQ(referee.state().command, Command::kStop) << "by hand now";
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Extra time, shoot-out, early end
+
+TEST(BuiltinReferee, ADrawGoesToExtraTimeWithSidesChangedEachHalfThenToTheShootout) {
+  RefereeProfile profile = builtin_profile("strict_ai");
+  profile.game.half_duration = 10;
+  profile.game.half_time = 1;
+  profile.game.extra_time = {.enabled = true, .break_duration = 2, .half_duration = 5, .half_time = 1,
+                             .shootout_break = 3, .shootout_penalties = 5};
+  BuiltinReferee referee(profile, FieldGeometry::division_b());
+  std::vector<std::pair<Stage, bool>> seen;  // stage, blue on the positive half
+  double t = 0;
+  const auto play = [&](double seconds) {
+    for (const double end = t + seconds; t < end; t += 0.5) {
+      referee.step(ball_at({0, 0}), at(t));
+      if (referee.state().command == Command::kStop) {
+        ASSERT_TRUE(referee.command(Command::kForceStart, at(t)));
+      }
+      const std::pair<Stage, bool> now{referee.state().stage, *referee.state().blue_team_on_positive_half};
+      if (seen.empty() || seen.back() != now) seen.push_back(now);
+    }
+  };
+  ASSERT_TRUE(referee.command(Command::kForceStart, at(0)));
+  play(60);
+  const std::vector<std::pair<Stage, bool>> expected = {
+      {Stage::kNormalFirstHalf, false},       {Stage::kNormalHalfTime, false},
+      {Stage::kNormalSecondHalf, true},        {Stage::kExtraTimeBreak, true},
+      {Stage::kExtraFirstHalf, false},         {Stage::kExtraHalfTime, false},
+      {Stage::kExtraSecondHalf, true},         {Stage::kPenaltyShootoutBreak, true},
+      {Stage::kPenaltyShootout, true}};
+  ASSERT_EQ(seen.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(seen[i].first, expected[i].first) << i << ": " << to_string(seen[i].first);
+    EXPECT_EQ(seen[i].second, expected[i].second) << i << ": " << to_string(seen[i].first);
+  }
+}
+
+TEST(BuiltinReferee, AWinnerAfterTheSecondHalfEndsTheMatchWithoutExtraTime) {
+  RefereeProfile profile = builtin_profile("strict_ai");
+  profile.game.half_duration = 10;
+  profile.game.half_time = 1;
+  BuiltinReferee referee(profile, FieldGeometry::division_b());
+  ASSERT_TRUE(referee.command(Command::kForceStart, at(0)));
+  referee.step(ball_at({-4.0, 0.0}), at(1));  // blue defends -x in the first half: yellow scores
+  referee.step(ball_at({-4.6, 0.0}), at(1.1));
+  ASSERT_EQ(referee.state().yellow.score, 1u);
+  ASSERT_TRUE(referee.command(Command::kForceStart, at(2)));
+  referee.step(ball_at({0.0, 0.0}), at(12));
+  ASSERT_EQ(referee.state().stage, Stage::kNormalHalfTime);
+  referee.step(ball_at({0.0, 0.0}), at(13.5));
+  ASSERT_TRUE(referee.command(Command::kForceStart, at(14)));
+  referee.step(ball_at({0.0, 0.0}), at(24.1));
+  EXPECT_EQ(referee.state().stage, Stage::kPostGame) << "the final whistle";
+  EXPECT_EQ(referee.state().command, Command::kHalt);
+}
+
+/// A referee at the start of the shoot-out (strict_ai with auto_continue, blue defending +x).
+BuiltinReferee shootout_referee() {
+  RefereeProfile profile = builtin_profile("strict_ai");
+  profile.game.auto_continue = true;
+  profile.game.ball_placement = false;
+  BuiltinReferee referee(profile, FieldGeometry::division_b());
+  for (int stage = 0; stage < 12 && referee.state().stage != Stage::kPenaltyShootout; ++stage) {
+    EXPECT_TRUE(referee.next_stage(at(0)));
+  }
+  return referee;
+}
+
+/// Plays one penalty of the shoot-out from its STOP at `t`: a goal or a miss.
+void take_penalty(BuiltinReferee& referee, double& t, bool goal) {
+  const Command penalty = *referee.state().next_command;
+  const bool yellow_kicks = penalty == Command::kPreparePenaltyYellow;
+  const double goal_x = (yellow_kicks == referee.state().blue_team_on_positive_half.value()) ? 4.5 : -4.5;
+  const Vec2 mark(goal_x - (goal_x > 0 ? 6.0 : -6.0), 0.0);
+  for (int i = 0; i < 20 && referee.state().command != Command::kNormalStart; ++i, t += 0.5) {
+    referee.step(ball_at(mark), at(t));
+  }
+  ASSERT_EQ(referee.state().command, Command::kNormalStart);
+  const Vec2 end(goal_x + (goal_x > 0 ? 0.1 : -0.1), goal ? 0.0 : 0.8);
+  referee.step(ball_at(mark + 0.9 * (end - mark)), at(t += 0.1));
+  referee.step(ball_at(end), at(t += 0.1));
+  t += 0.5;
+}
+
+TEST(BuiltinReferee, TheShootoutEndsWhenOneTeamCanNoLongerBeCaught) {
+  BuiltinReferee referee = shootout_referee();
+  EXPECT_EQ(referee.state().next_command, Command::kPreparePenaltyYellow);
+  double t = 1;
+  for (int round = 0; round < 3; ++round) {
+    take_penalty(referee, t, /*goal=*/true);   // yellow scores
+    EXPECT_EQ(referee.state().next_command, Command::kPreparePenaltyBlue);
+    take_penalty(referee, t, /*goal=*/false);  // blue misses
+  }
+  EXPECT_EQ(referee.state().yellow.score, 3u);
+  EXPECT_EQ(referee.state().blue.score, 0u);
+  EXPECT_EQ(referee.state().stage, Stage::kPostGame) << "3 : 0 with two kicks each left";
+}
+
+TEST(BuiltinReferee, TheShootoutGoesToSuddenDeathAfterFivePenaltiesEach) {
+  BuiltinReferee referee = shootout_referee();
+  double t = 1;
+  for (int round = 0; round < 5; ++round) {
+    take_penalty(referee, t, true);
+    take_penalty(referee, t, true);
+  }
+  EXPECT_EQ(referee.state().stage, Stage::kPenaltyShootout) << "5 : 5";
+  take_penalty(referee, t, true);
+  EXPECT_EQ(referee.state().stage, Stage::kPenaltyShootout) << "blue still kicks";
+  take_penalty(referee, t, false);
+  EXPECT_EQ(referee.state().stage, Stage::kPostGame);
+  EXPECT_EQ(referee.state().yellow.score, 6u);
+  EXPECT_EQ(referee.state().blue.score, 5u);
+}
+
+TEST(BuiltinReferee, TenGoalsWithALeadOfTwoEndTheMatchEarly) {
+  RefereeProfile profile = builtin_profile("arcade");
+  profile.rules.goal_detection.cooldown = 0;
+  BuiltinReferee referee = running_referee(profile);
+  double t = 1;
+  for (int goal = 0; goal < 10; ++goal) {
+    ASSERT_TRUE(referee.command(Command::kForceStart, at(t)));
+    referee.step(ball_at({4.0, 0.0}), at(t += 0.1));
+    referee.step(ball_at({4.6, 0.0}), at(t += 0.1));
+    if (goal < 9) {
+      EXPECT_NE(referee.state().stage, Stage::kPostGame) << goal;
+    }
+  }
+  EXPECT_EQ(referee.state().yellow.score, 10u);
+  EXPECT_EQ(referee.state().stage, Stage::kPostGame);
 }
 
 TEST(BuiltinReferee, WithoutTheNoProgressRuleARestingBallIsLeftAlone) {

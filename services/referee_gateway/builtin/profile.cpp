@@ -17,6 +17,14 @@ using config::nested;
 
 constexpr std::string_view kBuiltinProfiles = "arcade, strict_ai, simulation";
 
+/// A per-division time limit, keys a and b (seconds).
+Fields<DivisionSeconds> division_seconds_fields(double min, double max) {
+  return {
+      field("a", &DivisionSeconds::a).unit("s").range(min, max).doc("division A"),
+      field("b", &DivisionSeconds::b).unit("s").range(min, max).doc("division B"),
+  };
+}
+
 Fields<GoalDetectionRule> goal_detection_fields() {
   return {
       field("enabled", &GoalDetectionRule::enabled),
@@ -72,14 +80,8 @@ Fields<KeepOutRule> keep_out_fields() {
 Fields<NoProgressRule> no_progress_fields() {
   return {
       field("enabled", &NoProgressRule::enabled),
-      field("timeout", &NoProgressRule::timeout)
-          .unit("s")
-          .range(1, 600)
+      nested("timeout", &NoProgressRule::timeout, division_seconds_fields(1, 600))
           .doc("the ball not moved 0.05 m this long while running: STOP, then FORCE_START"),
-      field("kick_timeout", &NoProgressRule::kick_timeout)
-          .unit("s")
-          .range(1, 600)
-          .doc("a kickoff, penalty or free kick not taken this long: STOP, then FORCE_START"),
   };
 }
 
@@ -90,6 +92,20 @@ Fields<RefereeRules> rules_fields() {
       nested("defense_area", &RefereeRules::defense_area, defense_area_fields()),
       nested("keep_out", &RefereeRules::keep_out, keep_out_fields()),
       nested("no_progress", &RefereeRules::no_progress, no_progress_fields()),
+  };
+}
+
+Fields<ExtraTimeSettings> extra_time_fields() {
+  return {
+      field("enabled", &ExtraTimeSettings::enabled)
+          .doc("a draw after the second half goes to extra time, then to a shoot-out (elimination matches)"),
+      field("break", &ExtraTimeSettings::break_duration).unit("s").range(0, 3600),
+      field("half_duration", &ExtraTimeSettings::half_duration).unit("s").range(1, 3600)
+          .doc("playing time per extra half"),
+      field("half_time", &ExtraTimeSettings::half_time).unit("s").range(0, 3600),
+      field("shootout_break", &ExtraTimeSettings::shootout_break).unit("s").range(0, 3600),
+      field("shootout_penalties", &ExtraTimeSettings::shootout_penalties).range(1, 20)
+          .doc("penalties per team before sudden death"),
   };
 }
 
@@ -111,11 +127,32 @@ Fields<GameSettings> game_fields() {
           .unit("s")
           .range(0, 60)
           .doc("time in STOP or preparation before an automatic continuation"),
+      field("prepare_timeout", &GameSettings::prepare_timeout)
+          .unit("s")
+          .range(0, 600)
+          .doc("with auto_continue: NORMAL_START once the robots are in position, at the latest after this"),
+      field("kickoff_timeout", &GameSettings::kickoff_timeout)
+          .unit("s")
+          .range(1, 600)
+          .doc("after NORMAL_START a kickoff ball is in play this late even if nobody kicked it"),
+      nested("free_kick_timeout", &GameSettings::free_kick_timeout, division_seconds_fields(1, 600))
+          .doc("after a free kick its ball is in play this late even if nobody kicked it"),
+      field("penalty_timeout", &GameSettings::penalty_timeout)
+          .unit("s")
+          .range(1, 600)
+          .doc("a penalty not decided this long after NORMAL_START fails: goal kick for the defenders"),
+      field("ball_placement", &GameSettings::ball_placement)
+          .doc("a team places the ball for a kickoff, penalty or FORCE_START whose ball is not where the "
+               "restart needs it (false: STOP until it is placed by hand)"),
       field("placement_timeout", &GameSettings::placement_timeout).unit("s").range(1, 300),
       field("placement_tolerance", &GameSettings::placement_tolerance)
           .unit("m")
           .range(0.01, 1)
           .doc("ball within this distance of the target, at rest, for a successful placement"),
+      field("early_end_goals", &GameSettings::early_end_goals)
+          .range(0, 1000)
+          .doc("a team with this many goals and a lead of at least 2 ends the match (0: never)"),
+      nested("extra_time", &GameSettings::extra_time, extra_time_fields()),
   };
 }
 

@@ -4,12 +4,16 @@
 // belong to the division and are given to the referee separately (FieldGeometry in builtin_referee.h).
 //
 // Built-in profiles:
-//   * arcade    - goal detection only; after a goal STOP, then FORCE_START by itself after
-//                 game.stop_duration; every pending kickoff and its NORMAL_START also continue by
-//                 themselves (game.auto_continue), so an AI-vs-AI match runs without an operator.
-//   * strict_ai - goal, out of bounds (with ball placement), defense area and keep-out; after a goal the
-//                 referee stays in STOP and names the kickoff in next_command; the operator issues it.
-//                 Free kicks after a successful placement or a foul still follow by themselves.
+//   * arcade     - goal detection only; after a goal the ball is placed on the centre mark, then
+//                  FORCE_START by itself after game.stop_duration; every pending kickoff and its
+//                  NORMAL_START also continue by themselves (game.auto_continue), so an AI-vs-AI match
+//                  runs without an operator.
+//   * simulation - what `./ssl up` runs: goals (the ball placed on the centre mark, the conceding team's
+//                  kickoff), out of bounds with placement, keep-out and no progress, all continuing by
+//                  themselves.
+//   * strict_ai  - every rule; after a goal the ball is placed on the centre mark and the referee stays
+//                  in STOP with the kickoff in next_command; the operator issues it. Free kicks after a
+//                  successful placement or a foul still follow by themselves. Draws go to extra time.
 //
 // Units: metres and seconds throughout (durations are plain doubles in seconds, as in every config file).
 //
@@ -21,6 +25,7 @@
 #include <string>
 #include <string_view>
 
+#include "libs/common/division.h"
 #include "libs/common/result.h"
 #include "libs/common/team.h"
 
@@ -50,13 +55,12 @@ struct KeepOutRule {
   double violation_persistence = 0;  // s a robot must stay too close before it is a foul
 };
 
-/// A game that does not go on: the ball not moved 0.05 m while running for `timeout` (no progress; 10 s in
-/// division B, 5 s in A), or a restart not taken within `kick_timeout` (the same numbers) -> STOP, then
-/// FORCE_START after stop_duration, as the Game Controller does.
+/// A game that does not go on: the ball not moved 0.05 m while running for `timeout` (rules: 5 s in
+/// division A, 10 s in B) -> STOP, then FORCE_START after stop_duration (the ball placed first when no
+/// robot could reach it), as the Game Controller does.
 struct NoProgressRule {
   bool enabled = false;
-  double timeout = 0;       // s
-  double kick_timeout = 0;  // s from NORMAL_START (after a preparation) or a free kick to the kick
+  DivisionSeconds timeout;  // s
 };
 
 struct RefereeRules {
@@ -67,6 +71,16 @@ struct RefereeRules {
   NoProgressRule no_progress;
 };
 
+/// Extra time and the shoot-out (rules: elimination matches that are drawn after the second half).
+struct ExtraTimeSettings {
+  bool enabled = false;        // false: the match ends after the second half whatever the score
+  double break_duration = 0;   // s before the first extra half (rules 300)
+  double half_duration = 0;    // s of playing time per extra half (rules 150)
+  double half_time = 0;        // s between the extra halves (rules 120)
+  double shootout_break = 0;   // s before the shoot-out (rules 120)
+  std::uint32_t shootout_penalties = 0;  // per team before sudden death (rules 5)
+};
+
 struct GameSettings {
   double half_duration = 0;                     // s of playing time per half
   double half_time = 0;                         // s of half-time break
@@ -74,8 +88,17 @@ struct GameSettings {
   bool force_start_after_goal = false;          // after a goal: STOP, then FORCE_START after stop_duration
   bool auto_continue = false;                   // pending kickoffs / penalties continue without the operator
   double stop_duration = 0;                     // s in STOP (or preparing) before an automatic continuation
+  double prepare_timeout = 0;   // s: a preparation gets NORMAL_START at the latest now (auto_continue; rules 10)
+  double kickoff_timeout = 0;   // s after NORMAL_START a kickoff ball is in play without a kick (rules 10)
+  DivisionSeconds free_kick_timeout;  // s after a free kick its ball is in play without a kick (rules 5 / 10)
+  double penalty_timeout = 0;   // s a penalty may last after NORMAL_START (rules 10)
+  bool ball_placement = false;  // a team places the ball for a kickoff, penalty or FORCE_START whose ball is
+                                // not where the restart needs it (false: STOP until placed by hand)
   double placement_timeout = 0;                 // s a team has to place the ball (30 per rules)
   double placement_tolerance = 0;               // m between ball and target for a successful placement (0.15)
+  std::uint32_t early_end_goals = 0;  // a team with this many goals and a lead of 2 ends the match (rules 10;
+                                      // 0: never)
+  ExtraTimeSettings extra_time;
 };
 
 struct RefereeProfile {

@@ -92,6 +92,7 @@ std::vector<RobotCommand> from_idl(const idl::robot::RobotCommands& in) {
 idl::world::WorldState to_idl(const WorldState& in, std::uint64_t sequence_number, std::int64_t publish_unix_ns) {
   idl::world::WorldState out;
   out.team(in.team == TeamColor::kBlue ? idl::common::TEAM_COLOR_BLUE : idl::common::TEAM_COLOR_YELLOW);
+  out.flipped(in.flipped);
   out.sequence_number(sequence_number);
   out.stamp().capture_unix_ns(in.stamp.capture_time.nanoseconds());
   out.stamp().receive_unix_ns(in.stamp.receive_time.nanoseconds());

@@ -61,9 +61,10 @@ TEST(WorldModelConvert, RefereeCommandsMapOneToOne) {
   EXPECT_EQ(from_idl(in).command, RefereeCommand::kHalt);
 }
 
-TEST(WorldModelConvert, WorldStateCarriesStampTeamAndPossession) {
+TEST(WorldModelConvert, WorldStateCarriesStampTeamFrameAndPossession) {
   WorldState in;
   in.team = TeamColor::kYellow;
+  in.flipped = true;
   in.stamp.capture_time = time::Timestamp::from_nanoseconds(42);
   in.stamp.camera_id = 3;
   in.has_ball = true;
@@ -74,6 +75,7 @@ TEST(WorldModelConvert, WorldStateCarriesStampTeamAndPossession) {
   in.possessing_robot = 7;
   const auto out = to_idl(in, 9, 100);
   EXPECT_EQ(out.team(), idl::common::TEAM_COLOR_YELLOW);
+  EXPECT_TRUE(out.flipped());
   EXPECT_EQ(out.sequence_number(), 9u);
   EXPECT_EQ(out.stamp().capture_unix_ns(), 42);
   EXPECT_EQ(out.stamp().camera_id(), 3u);

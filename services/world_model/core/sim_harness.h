@@ -83,6 +83,7 @@ struct HarnessOptions {
 class SimHarness {
  public:
   static constexpr time::Duration kStep = std::chrono::milliseconds(2);
+  static constexpr time::Duration kTruthKept = std::chrono::seconds(2);
 
   explicit SimHarness(const HarnessOptions& options, const WorldModelConfig& config = {})
       : sim_(make_options(options)), model_(config) {
@@ -95,7 +96,7 @@ class SimHarness {
   const WorldModel& model() const { return model_; }
   time::Timestamp now() const { return sim_.snapshot().time; }
 
-  /// The true world at a capture instant (the latest snapshot at or before t).
+  /// The true world at a capture instant (the latest snapshot at or before t; kept for kTruthKept).
   const sim::WorldSnapshot& truth(time::Timestamp t) const {
     auto it = truth_.upper_bound(t.nanoseconds());
     if (it != truth_.begin()) --it;
@@ -112,6 +113,9 @@ class SimHarness {
       sim::StepOutput out = sim_.step(kStep);
       const sim::WorldSnapshot snapshot = sim_.snapshot();
       truth_[snapshot.time.nanoseconds()] = snapshot;
+      // Frames are captured at most a vision delay ago: older truth is not asked for (a whole match would
+      // otherwise keep every 2 ms snapshot).
+      truth_.erase(truth_.begin(), truth_.lower_bound((snapshot.time - kTruthKept).nanoseconds()));
       for (const sim::DetectionFrame& frame : out.frames) {
         model_.on_detection(from_sim(frame), now());
         if (after_frame) after_frame(frame);

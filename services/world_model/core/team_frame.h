@@ -26,6 +26,13 @@ class TeamFrame {
     return frame;
   }
 
+  /// The frame a world state was published in (WorldState::flipped), for its consumers.
+  static TeamFrame with_flip(bool flipped) {
+    TeamFrame frame;
+    frame.flipped_ = flipped;
+    return frame;
+  }
+
   bool flipped() const { return flipped_; }
 
   /// Vision -> team (the rotation by pi is its own inverse, so the same functions go back).

@@ -13,7 +13,7 @@ double seconds(time::Duration d) { return time::to_seconds(d); }
 
 WorldModel::WorldModel(const WorldModelConfig& config)
     : config_(config),
-      frame_(TeamFrame::make(config.team, false)),
+      frame_(TeamFrame::make(config.team, kBlueOnPositiveHalfAtStart)),
       game_(config.team),
       ball_(config.ball, config.ball_model),
       alignment_(config.camera_alignment) {}
