@@ -113,7 +113,8 @@ void PlannedMatch::step_referee(wm::testing::SimHarness& harness, time::Timestam
                                    .z = 0.0,
                                    .vx = 0.0,
                                    .vy = 0.0,
-                                   .vz = 0.0};
+                                   .vz = 0.0,
+                                   .teleport_safely = true};
   if (harness.sim().apply(request).empty()) ++placements_teleported_;
 }
 

@@ -125,6 +125,7 @@ void BuiltinRefereeService::Impl::teleport_placement() {
   ball->set_vx(0);
   ball->set_vy(0);
   ball->set_vz(0);
+  ball->set_teleport_safely(true);  // robots touching the placement point are moved off it
   std::string bytes;
   Status sent = command.SerializeToString(&bytes)
                     ? simulator->send_to(*simulator_control,
