@@ -1,10 +1,12 @@
 // Full-match benchmark (./ssl bench): a whole simulated match in one process, in lockstep
 // (planner::testing::PlannedMatch: the Bullet simulator with realistic vision, both teams' world models and
-// planners ticking at 100 Hz, a scripted referee), timed on the host's steady clock: the real-time factor
-// is simulated seconds per wall-clock second. Design budget: a 6 v 6 match >= 20x real time. Also prints
-// the 11 v 11 (division A) figure and the per-component cost is left to the component benchmarks.
+// planners ticking at 100 Hz, the built-in referee with the `simulation` profile as `./ssl up` runs it:
+// two halves of 300 s of playing time, half time, placements by the simulator), timed on the host's steady
+// clock: the real-time factor is simulated seconds per wall-clock second. Budget (issue 12): a 6 v 6 match
+// >= 20x real time. Prints the match report (sslctl match report's) of each match, and the 11 v 11
+// (division A) figure.
 //
-//   build/bench/match_lockstep [--seconds S]
+//   build/bench/match_lockstep [--half S] [--seed N] [--robots 6|11|both]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -12,57 +14,93 @@
 #include <string>
 
 #include "services/planner/testing/planned_match.h"
+#include "tools/sslctl/match_report.h"
 
 namespace {
 
 using namespace std::chrono_literals;
 using ssl::planner::testing::PlannedMatch;
-using ssl::wm::RefereeCommand;
 
 struct Figures {
   double realtime_factor = 0;
-  std::size_t frames = 0;
-  double ball_travel = 0;
+  double simulated = 0;  // s
+  bool final_whistle = false;
+  ssl::sslctl::MatchReport report;
 };
 
-Figures play(const ssl::sim::FieldGeometry& field, std::uint32_t robots, double seconds) {
-  PlannedMatch match({.field = field, .robots = robots, .seed = 42});
-  // A kickoff, then normal play, a stop and a free kick, repeated: the planners' referee branches and
-  // the base strategy both run.
-  std::vector<ssl::planner::testing::ScriptedCommand> script = {{0.0, RefereeCommand::kStop}};
-  for (double t = 1.0; t < seconds; t += 20.0) {
-    script.push_back({t, RefereeCommand::kPrepareKickoffBlue});
-    script.push_back({t + 2.0, RefereeCommand::kNormalStart});
-    script.push_back({t + 12.0, RefereeCommand::kStop});
-    script.push_back({t + 14.0, RefereeCommand::kDirectFreeYellow});
-    script.push_back({t + 19.0, RefereeCommand::kStop});
+Figures play(const ssl::sim::FieldGeometry& field, std::uint32_t robots, double half, std::uint64_t seed) {
+  auto profile = ssl::referee::load_referee_profile("simulation");
+  if (!profile) {
+    std::fprintf(stderr, "match_lockstep: %s\n", profile.error().message.c_str());
+    std::exit(1);
   }
-  match.script(script);
-  Figures out;
+  profile->game.half_duration = half;
+  PlannedMatch match({.field = field, .robots = robots, .seed = seed, .referee = *profile});
+  ssl::sslctl::MatchReportBuilder report;
+  match.start_match();
   const auto start = std::chrono::steady_clock::now();
-  match.run(ssl::time::duration_from_seconds(seconds),
-            [&](const ssl::sim::DetectionFrame&, const ssl::sim::WorldSnapshot&) { ++out.frames; });
+  Figures out;
+  out.final_whistle = match.run_until_final_whistle(
+      std::chrono::hours(1), [&](const ssl::sim::DetectionFrame&, const ssl::sim::WorldSnapshot& truth) {
+        report.on_referee(match.builtin_referee()->state(), truth.time);
+        report.on_ball(truth.ball.position.head<2>(), truth.time);
+      });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out.realtime_factor = seconds / wall;
-  out.ball_travel = match.ball_travel();
+  out.simulated = ssl::time::to_seconds(match.sim().snapshot().time - match.start());
+  out.realtime_factor = out.simulated / wall;
+  out.report = report.report();
   return out;
+}
+
+void print(const char* name, const Figures& f, const char* budget) {
+  std::printf("%s: %.0f s simulated (final whistle: %s), %.1fx real time%s\n", name, f.simulated,
+              f.final_whistle ? "yes" : "NO", f.realtime_factor, budget);
+  std::printf("%s\n", ssl::sslctl::to_text(f.report).c_str());
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  double seconds = 60;
+  double half = 300;
+  std::uint64_t seed = 42;
+  std::string robots = "both";
   for (int i = 1; i < argc; ++i) {
+    const auto value = [&](const char* flag) -> const char* {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "match_lockstep: %s needs a value\n", flag);
+        std::exit(2);
+      }
+      return argv[++i];
+    };
     if (std::strcmp(argv[i], "--help") == 0) {
-      std::printf("usage: match_lockstep [--seconds S]\n  plays S simulated seconds (default 60) of a 6 v 6 "
-                  "and an 11 v 11 match in lockstep and prints the real-time factors\n");
+      std::printf("usage: match_lockstep [--half S] [--seed N] [--robots 6|11|both]\n"
+                  "  plays whole matches (two halves of S s of playing time, default 300, the built-in referee's\n"
+                  "  simulation profile) of 6 v 6 (division B) and 11 v 11 (division A) in lockstep and prints the\n"
+                  "  real-time factors and each match's report\n");
       return 0;
     }
-    if (std::strcmp(argv[i], "--seconds") == 0 && i + 1 < argc) {
+    if (std::strcmp(argv[i], "--half") == 0) {
       char* end = nullptr;
-      seconds = std::strtod(argv[++i], &end);
-      if (!end || *end != '\0' || !(seconds > 0 && seconds <= 3600)) {
-        std::fprintf(stderr, "match_lockstep: --seconds needs a number in (0, 3600]\n");
+      half = std::strtod(value("--half"), &end);
+      if (!end || *end != '\0' || !(half >= 1 && half <= 3600)) {
+        std::fprintf(stderr, "match_lockstep: --half needs a number of seconds in [1, 3600]\n");
+        return 2;
+      }
+      continue;
+    }
+    if (std::strcmp(argv[i], "--seed") == 0) {
+      char* end = nullptr;
+      seed = std::strtoull(value("--seed"), &end, 10);
+      if (!end || *end != '\0') {
+        std::fprintf(stderr, "match_lockstep: --seed needs a whole number\n");
+        return 2;
+      }
+      continue;
+    }
+    if (std::strcmp(argv[i], "--robots") == 0) {
+      robots = value("--robots");
+      if (robots != "6" && robots != "11" && robots != "both") {
+        std::fprintf(stderr, "match_lockstep: --robots takes 6, 11 or both\n");
         return 2;
       }
       continue;
@@ -70,13 +108,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "match_lockstep: unknown argument '%s' (see --help)\n", argv[i]);
     return 2;
   }
-  const Figures b = play(ssl::sim::FieldGeometry::division_b(), 6, seconds);
-  std::printf("full match, lockstep, one process (simulator + 2 x (world model + planner) + referee script), "
-              "%.0f s simulated:\n", seconds);
-  std::printf("  6 v 6 division B:   %.1fx real time (budget >= 20x), %zu camera frames, ball travelled %.1f m\n",
-              b.realtime_factor, b.frames, b.ball_travel);
-  const Figures a = play(ssl::sim::FieldGeometry::division_a(), 11, seconds);
-  std::printf("  11 v 11 division A: %.1fx real time, %zu camera frames, ball travelled %.1f m\n",
-              a.realtime_factor, a.frames, a.ball_travel);
+  std::printf("whole matches in lockstep, one process (simulator + 2 x (world model + planner) + built-in referee "
+              "'simulation'), halves of %.0f s, seed %llu\n\n", half, static_cast<unsigned long long>(seed));
+  if (robots != "11") {
+    print("6 v 6 division B", play(ssl::sim::FieldGeometry::division_b(), 6, half, seed), " (budget >= 20x)");
+  }
+  if (robots != "6") print("11 v 11 division A", play(ssl::sim::FieldGeometry::division_a(), 11, half, seed), "");
   return 0;
 }

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "services/planner/testing/planned_match.h"
+#include "tools/sslctl/match_report.h"
 
 namespace ssl {
 namespace {
@@ -93,12 +94,15 @@ const MatchRecord& played_match() {
     match.start_match();
     const time::Timestamp start = match.start();
     std::uint32_t last_counter = 0;
+    sslctl::MatchReportBuilder report;
     double next_frame_check = 0;
     out.final_whistle = match.run_until_final_whistle(
         std::chrono::minutes(15), [&](const sim::DetectionFrame&, const sim::WorldSnapshot& truth) {
           const referee::BuiltinReferee& referee = *match.builtin_referee();
           const RefereeState& state = referee.state();
           const double t = time::to_seconds(truth.time - start);
+          report.on_referee(state, truth.time);
+          report.on_ball(truth.ball.position.head<2>(), truth.time);
           for (const referee::GameEvent& event : state.game_events) {
             if (!out.seen_events.insert(event.id).second) continue;
             if (event.type == GameEventType::kGoal) {
@@ -155,6 +159,7 @@ const MatchRecord& played_match() {
                 out.duration, out.goals.size(), static_cast<unsigned long long>(out.placements),
                 out.no_progress[Stage::kNormalFirstHalf], out.no_progress[Stage::kNormalSecondHalf],
                 std::string(to_string(final_state.stage)).c_str());
+    std::printf("%s", sslctl::to_text(report.report()).c_str());
     for (const MatchRecord::Goal& goal : out.goals) {
       std::printf("  goal at %6.1f s for %s, kickoff in play %s\n", goal.at,
                   goal.scorer == referee::Team::kYellow ? "yellow" : "blue",

@@ -145,4 +145,26 @@ int log_replay(const LogReplayOptions& options, ShutdownSignal& shutdown, std::o
 /// file it prints what was readable, then the error (with its offset) on `err`, and returns 1.
 int log_info(const std::string& file, bool json, std::ostream& out, std::ostream& err);
 
+// ---------------------------------------------------------------------------------------------------
+// Match report (tools/sslctl/match_report.h): what a match was, from its referee stream.
+
+struct MatchReportOptions {
+  std::string file;                              // an SSL log file; empty: the live streams
+  int referee_port = 10003;                      // group 224.5.23.1
+  int vision_port = 10006;                       // group 224.5.23.2 (the ball, for stalls)
+  std::string interface_address = "127.0.0.1";  // the NIC on the league's network
+  double duration_s = 0;                         // live: stop after this long; 0 = until Ctrl-C
+  bool until_final_whistle = false;              // live: stop once the referee says POST_GAME
+  bool json = false;                             // one JSON object
+  /// Called once both groups are joined (live; tests).
+  std::function<void()> on_ready;
+};
+
+/// `sslctl match report [FILE]`: reads Referee packets (and SSL-Vision for the ball) live from the multicast
+/// groups until --duration / Ctrl-C, or every record of an SSL log file, and prints the match report (score
+/// and goals with their times, time in play / stopped, commands, game events by type and team, the longest
+/// stall, stages and sides). Malformed packets are counted in the report. 1 when no referee packet came or
+/// the file cannot be read (a damaged file: the report of what was read, then the error).
+int match_report(const MatchReportOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err);
+
 }  // namespace ssl::sslctl

@@ -149,6 +149,25 @@ int main(int argc, char** argv) {
   info_cmd->add_option("file", info_file, "log file (.log or .log.gz)")->required();
   info_cmd->add_flag("--json", info_json, "one JSON object");
 
+  auto* match = app.add_subcommand("match", "the match as the league's streams show it");
+  match->require_subcommand(1);
+  ssl::sslctl::MatchReportOptions report;
+  auto* report_cmd = match->add_subcommand(
+      "report", "score, goals, time in play, game events, stalls: live from the referee (and vision) "
+                "multicast, or from an SSL log file");
+  report_cmd->add_option("file", report.file, "SSL log file (.log or .log.gz); without one: live");
+  report_cmd->add_option("--referee-port", report.referee_port, "Referee multicast port (group 224.5.23.1)")
+      ->capture_default_str();
+  report_cmd->add_option("--vision-port", report.vision_port, "SSL-Vision multicast port (group 224.5.23.2)")
+      ->capture_default_str();
+  report_cmd->add_option("--interface", report.interface_address, "address of the interface the groups are joined on")
+      ->capture_default_str();
+  report_cmd->add_option("--duration", report.duration_s, "live: stop after this many seconds (0: until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  report_cmd->add_flag("--until-final-whistle", report.until_final_whistle, "live: stop at POST_GAME");
+  report_cmd->add_flag("--json", report.json, "one JSON object");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -182,5 +201,6 @@ int main(int argc, char** argv) {
   }
   if (replay_cmd->parsed()) return ssl::sslctl::log_replay(replay, shutdown, std::cout, std::cerr);
   if (info_cmd->parsed()) return ssl::sslctl::log_info(info_file, info_json, std::cout, std::cerr);
+  if (report_cmd->parsed()) return ssl::sslctl::match_report(report, shutdown, std::cout, std::cerr);
   return 2;
 }

@@ -1,0 +1,236 @@
+#include "tools/sslctl/match_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace ssl::sslctl {
+namespace {
+
+using referee::Command;
+using referee::Team;
+
+std::string team_name(Team team) {
+  switch (team) {
+    case Team::kYellow: return "yellow";
+    case Team::kBlue: return "blue";
+    case Team::kUnknown: break;
+  }
+  return "-";
+}
+
+/// "m:ss.s" for a time in seconds.
+std::string clock_text(double seconds) {
+  const double clamped = std::max(seconds, 0.0);
+  const int minutes = static_cast<int>(clamped / 60);
+  char text[32];
+  std::snprintf(text, sizeof text, "%d:%04.1f", minutes, clamped - 60.0 * minutes);
+  return text;
+}
+
+double percent(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0; }
+
+}  // namespace
+
+MatchReportBuilder::Activity MatchReportBuilder::activity_of(Command command) {
+  switch (command) {
+    case Command::kNormalStart:
+    case Command::kForceStart:
+    case Command::kDirectFreeYellow:
+    case Command::kDirectFreeBlue:
+    case Command::kIndirectFreeYellow:
+    case Command::kIndirectFreeBlue:
+      return Activity::kInPlay;
+    case Command::kHalt:
+      return Activity::kHalted;
+    default:
+      return Activity::kStopped;
+  }
+}
+
+double MatchReportBuilder::since_start(time::Timestamp t) const {
+  return first_ ? time::to_seconds(t - *first_) : 0;
+}
+
+void MatchReportBuilder::on_referee(const referee::RefereeState& state, time::Timestamp t) {
+  if (last_ && t < *last_) return;
+  if (!first_) first_ = t;
+  ++report_.referee_samples;
+  if (previous_ && last_) {
+    const double dt = time::to_seconds(t - *last_);
+    switch (activity_of(previous_->command)) {
+      case Activity::kInPlay: report_.in_play += dt; break;
+      case Activity::kStopped: report_.stopped += dt; break;
+      case Activity::kHalted: report_.halted += dt; break;
+    }
+  }
+  const double at = since_start(t);
+  if (!previous_ || previous_->command_counter != state.command_counter) ++report_.commands[state.command];
+  if (!previous_ || previous_->stage != state.stage) report_.stages.push_back({at, state.stage});
+  if (state.blue_team_on_positive_half &&
+      (report_.sides.empty() || report_.sides.back().blue_on_positive_half != *state.blue_team_on_positive_half)) {
+    report_.sides.push_back({at, *state.blue_team_on_positive_half});
+  }
+  if (activity_of(state.command) != Activity::kInPlay) stall_anchor_.reset();
+  for (const referee::GameEvent& event : state.game_events) {
+    if (!seen_events_.insert(referee::event_key(event)).second) continue;
+    ++event_counts_[{event.type, event.by_team}];
+    if (event.type == referee::GameEventType::kGoal) {
+      MatchReport::Goal goal{.at = at, .stage = state.stage, .team = event.by_team, .by_bot = event.by_bot};
+      if (state.stage_time_left) goal.stage_time_left = time::to_seconds(*state.stage_time_left);
+      report_.goals.push_back(goal);
+    }
+  }
+  report_.source = state.source_identifier;
+  for (auto [line, info] : {std::pair{&report_.yellow, &state.yellow}, std::pair{&report_.blue, &state.blue}}) {
+    line->name = info->name;
+    line->score = info->score;
+    line->fouls = info->foul_counter;
+    line->yellow_cards = info->yellow_cards;
+    line->red_cards = info->red_cards;
+  }
+  report_.final_stage = state.stage;
+  if (state.stage == referee::Stage::kPostGame) report_.final_whistle = true;
+  report_.duration = at;
+  previous_ = state;
+  last_ = t;
+}
+
+void MatchReportBuilder::on_ball(const geom::Vec2& ball, time::Timestamp t) {
+  if (last_ball_time_ && t < *last_ball_time_) return;
+  last_ball_time_ = t;
+  ++report_.ball_samples;
+  if (!report_.longest_stall) report_.longest_stall = MatchReport::Stall{};
+  if (!previous_ || activity_of(previous_->command) != Activity::kInPlay) {
+    stall_anchor_.reset();
+    return;
+  }
+  if (!stall_anchor_ || (ball - stall_anchor_->first).norm() >= kStallDistance) {
+    stall_anchor_ = {ball, t};
+    return;
+  }
+  const double seconds = time::to_seconds(t - stall_anchor_->second);
+  if (seconds > report_.longest_stall->seconds) {
+    report_.longest_stall = MatchReport::Stall{
+        .seconds = seconds, .from = since_start(stall_anchor_->second), .ball = stall_anchor_->first};
+  }
+}
+
+MatchReport MatchReportBuilder::report() const {
+  MatchReport out = report_;
+  for (const auto& [key, count] : event_counts_) {
+    out.events.push_back({.type = key.first, .team = key.second, .count = count});
+  }
+  return out;
+}
+
+std::string to_text(const MatchReport& r) {
+  std::ostringstream out;
+  char line[256];
+  std::snprintf(line, sizeof line, "match report: %s, %.1f s of referee packets (%llu), %llu ball observations\n",
+                r.source.empty() ? "unknown referee" : r.source.c_str(), r.duration,
+                static_cast<unsigned long long>(r.referee_samples), static_cast<unsigned long long>(r.ball_samples));
+  out << line;
+  // "yellow 2 : 1 blue", with the team names when the referee gives others than the colours.
+  const auto named = [](const std::string& name, const char* colour) {
+    return name.empty() || name == colour ? std::string(colour) : name + " (" + colour + ")";
+  };
+  out << "score: " << named(r.yellow.name, "yellow") << ' ' << r.yellow.score << " : " << r.blue.score << ' '
+      << named(r.blue.name, "blue")
+      << (r.final_whistle ? ", final whistle" : ", not finished") << " (" << referee::to_string(r.final_stage)
+      << ")\n";
+  out << "goals:" << (r.goals.empty() ? " none" : "") << '\n';
+  for (const MatchReport::Goal& goal : r.goals) {
+    out << "  " << clock_text(goal.at) << "  " << team_name(goal.team);
+    if (goal.by_bot) out << " robot " << *goal.by_bot;
+    out << "  (" << referee::to_string(goal.stage);
+    if (goal.stage_time_left) out << ", " << clock_text(*goal.stage_time_left) << " left";
+    out << ")\n";
+  }
+  const double total = r.in_play + r.stopped + r.halted;
+  std::snprintf(line, sizeof line, "time: in play %.1f s (%.0f %%), stopped %.1f s (%.0f %%), halted %.1f s (%.0f %%)\n",
+                r.in_play, percent(r.in_play, total), r.stopped, percent(r.stopped, total), r.halted,
+                percent(r.halted, total));
+  out << line;
+  if (!r.longest_stall) {
+    out << "longest stall in play: unknown (no vision)\n";
+  } else {
+    std::snprintf(line, sizeof line, "longest stall in play: %.1f s from %s, ball at (%.2f, %.2f)\n",
+                  r.longest_stall->seconds, clock_text(r.longest_stall->from).c_str(), r.longest_stall->ball.x(),
+                  r.longest_stall->ball.y());
+    out << line;
+  }
+  out << "commands:";
+  for (const auto& [command, count] : r.commands) out << ' ' << referee::to_string(command) << ' ' << count << ',';
+  out << '\n' << "game events:" << (r.events.empty() ? " none" : "") << '\n';
+  for (const MatchReport::EventCount& event : r.events) {
+    out << "  " << referee::to_string(event.type) << "  " << team_name(event.team) << ' ' << event.count << '\n';
+  }
+  out << "fouls: yellow " << r.yellow.fouls << ", blue " << r.blue.fouls << "; cards: yellow " << r.yellow.yellow_cards
+      << " yellow / " << r.yellow.red_cards << " red, blue " << r.blue.yellow_cards << " yellow / " << r.blue.red_cards
+      << " red\n";
+  out << "stages:";
+  for (const MatchReport::StageChange& stage : r.stages) {
+    out << ' ' << clock_text(stage.at) << ' ' << referee::to_string(stage.stage) << ',';
+  }
+  out << "\nsides:";
+  for (const MatchReport::SideChange& side : r.sides) {
+    out << ' ' << clock_text(side.at) << " blue on the " << (side.blue_on_positive_half ? "positive" : "negative")
+        << " half,";
+  }
+  out << '\n';
+  if (r.malformed > 0) out << "malformed packets: " << r.malformed << '\n';
+  return out.str();
+}
+
+std::string to_json(const MatchReport& r) {
+  using nlohmann::json;
+  json out;
+  out["source"] = r.source;
+  out["referee_samples"] = r.referee_samples;
+  out["ball_samples"] = r.ball_samples;
+  out["duration_s"] = r.duration;
+  for (auto [key, line] : {std::pair{"yellow", &r.yellow}, std::pair{"blue", &r.blue}}) {
+    out["teams"][key] = {{"name", line->name},           {"score", line->score},
+                         {"fouls", line->fouls},         {"yellow_cards", line->yellow_cards},
+                         {"red_cards", line->red_cards}};
+  }
+  out["goals"] = json::array();
+  for (const MatchReport::Goal& goal : r.goals) {
+    json g = {{"at_s", goal.at}, {"stage", referee::to_string(goal.stage)}, {"team", team_name(goal.team)}};
+    if (goal.stage_time_left) g["stage_time_left_s"] = *goal.stage_time_left;
+    if (goal.by_bot) g["by_bot"] = *goal.by_bot;
+    out["goals"].push_back(g);
+  }
+  out["time_s"] = {{"in_play", r.in_play}, {"stopped", r.stopped}, {"halted", r.halted}};
+  if (r.longest_stall) {
+    out["longest_stall"] = {{"seconds", r.longest_stall->seconds},
+                            {"from_s", r.longest_stall->from},
+                            {"ball", {r.longest_stall->ball.x(), r.longest_stall->ball.y()}}};
+  } else {
+    out["longest_stall"] = nullptr;
+  }
+  out["commands"] = json::object();
+  for (const auto& [command, count] : r.commands) out["commands"][std::string(referee::to_string(command))] = count;
+  out["game_events"] = json::array();
+  for (const MatchReport::EventCount& event : r.events) {
+    out["game_events"].push_back(
+        {{"type", referee::to_string(event.type)}, {"team", team_name(event.team)}, {"count", event.count}});
+  }
+  out["stages"] = json::array();
+  for (const MatchReport::StageChange& stage : r.stages) {
+    out["stages"].push_back({{"at_s", stage.at}, {"stage", referee::to_string(stage.stage)}});
+  }
+  out["sides"] = json::array();
+  for (const MatchReport::SideChange& side : r.sides) {
+    out["sides"].push_back({{"at_s", side.at}, {"blue_on_positive_half", side.blue_on_positive_half}});
+  }
+  out["final_stage"] = referee::to_string(r.final_stage);
+  out["final_whistle"] = r.final_whistle;
+  out["malformed_packets"] = r.malformed;
+  return out.dump();
+}
+
+}  // namespace ssl::sslctl
