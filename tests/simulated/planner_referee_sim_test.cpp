@@ -981,24 +981,34 @@ TEST_P(PlannerSimReferee, PenaltyPositionsHoldThenOurKickerShoots) {
 INSTANTIATE_TEST_SUITE_P(PlannerSim, PlannerSimReferee, ::testing::ValuesIn(all_cases()),
                          [](const ::testing::TestParamInfo<Case>& p) { return p.param.name(); });
 
-// DESIGN LIMITATION (disabled, kept as the reproduction): a ball that left the field over the touch line
-// (0.1 m outside, 0.2 m from the wall) to the throw-in point 0.2 m inside. The placer takes the ball only by
-// approaching from behind it on the ball -> target line (0.23 m behind) and pushing it with the dribbler
-// on, but every target is clamped to the field + 0.05 m (motion.cpp clamp_to_field, Zones::field_margin)
-// before it is pushed out of the ball's 0.17 m keep-off circle: the approach point lands on the TARGET side
-// of the ball and the placer parks there for the whole 15 s (observed: placer at 0.18 m from the ball,
-// skill approach_ball, ball error 0.30 m throughout). Needs the placer to be allowed into the boundary (up
-// to the wall minus its radius) and, for balls closer than ~0.3 m to the wall, a pull-back skill: a design
-// change in the skill layer, not a small fix.
-// One case only (the limitation does not depend on colour, side or division): run it with
-// --gtest_also_run_disabled_tests.
-TEST(PlannerSimKnownLimitation, DISABLED_OurBallPlacementFromOutsideTheTouchLine) {
+// Balls beyond the field lines (between the lines and the walls, 0.3 m of boundary in division B): the
+// placer may enter the boundary, and a ball too near a wall to be approached from behind is first pulled
+// back (taken from the field side and dribbled backwards). One colour and side each: the skill does not
+// depend on them.
+struct OutsideCase {
+  const char* name;
+  Vec2 ball;    // team frame
+  Vec2 target;  // team frame
+};
+
+class PlannerSimPlacementOutside : public ::testing::TestWithParam<OutsideCase> {};
+
+TEST_P(PlannerSimPlacementOutside, OurPlacerFetchesTheBallFromTheBoundary) {
+  const OutsideCase c = GetParam();
   LockstepMatch m({.side = {TeamColor::kBlue, false}, .division_a = false}, seed());
   default_layout(m);
-  const double hw = m.field().field_width / 2;
-  m.place_ball({1.0, hw + 0.1});
-  run_our_placement(m, "PlacementOut", {1.0, hw - 0.2}, 15.0);
+  m.place_ball(c.ball);
+  run_our_placement(m, c.name, c.target, 20.0);
 }
+
+// Field B: 9 x 6 m, walls 0.3 m beyond the lines (x = +-4.8, y = +-3.3).
+INSTANTIATE_TEST_SUITE_P(
+    PlannerSim, PlannerSimPlacementOutside,
+    ::testing::Values(OutsideCase{"TouchLineBoundary", {1.0, 3.1}, {1.0, 2.8}},        // 0.2 m from the wall
+                      OutsideCase{"AgainstTheWall", {-1.5, 3.25}, {-1.5, 2.8}},       // 0.05 m from the wall
+                      OutsideCase{"BesideOurGoal", {-4.65, 1.2}, {-3.5, 2.8}},         // goal kick
+                      OutsideCase{"InTheCorner", {-4.7, -3.2}, {-4.3, -2.8}}),          // both walls near
+    [](const ::testing::TestParamInfo<OutsideCase>& param_info) { return std::string(param_info.param.name); });
 
 // ---- determinism ------------------------------------------------------------------------------------------
 

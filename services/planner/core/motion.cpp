@@ -52,9 +52,13 @@ Vec2 push_out_of_circle(const Vec2& p, const Vec2& center, double radius, const 
   return center + u * radius;
 }
 
-Vec2 clamp_to_field(const Vec2& p, const Zones& zones) {
-  const double hx = zones.field.half_length() + zones.field_margin;
-  const double hy = zones.field.half_width() + zones.field_margin;
+Vec2 clamp_to_field(const Vec2& p, const MotionIntent& intent, const Zones& zones) {
+  // The walls stand boundary_width beyond the lines (behind the goal lines too: the division A's wider
+  // margin there is not used).
+  const double beyond = intent.may_enter_boundary ? zones.field.size().boundary_width - zones.wall_margin
+                                                  : zones.field_margin;
+  const double hx = zones.field.half_length() + beyond;
+  const double hy = zones.field.half_width() + beyond;
   return {std::clamp(p.x(), -hx, hx), std::clamp(p.y(), -hy, hy)};
 }
 
@@ -82,7 +86,7 @@ std::optional<Vec2> detour(const Vec2& p, const Vec2& dir, double length, const 
 }  // namespace
 
 Vec2 project_out(const Vec2& target, const MotionIntent& intent, const Zones& zones) {
-  Vec2 p = clamp_to_field(target, zones);
+  Vec2 p = clamp_to_field(target, intent, zones);
   for (int pass = 0; pass < kProjectionPasses; ++pass) {
     const Vec2 before = p;
     if (intent.avoid_their_defense_area) {
@@ -104,7 +108,7 @@ Vec2 project_out(const Vec2& target, const MotionIntent& intent, const Zones& zo
       // Fallback direction: towards our goal (where defenders want to be anyway).
       p = push_out_of_circle(p, *zones.ball, intent.avoid_ball_radius, Vec2(-1, 0));
     }
-    p = clamp_to_field(p, zones);
+    p = clamp_to_field(p, intent, zones);
     if ((p - before).squaredNorm() < 1e-12) break;
   }
   return p;
@@ -172,15 +176,9 @@ RobotCommand SimpleMotionPlanner::plan(const wm::RobotState& robot, const Motion
     // Outside every zone: go around the ones on the way (discs: the ball, the corridor's nearest point;
     // boxes: through the nearer front corner).
     if (speed > 0) {
-      if (intent.avoid_ball_radius > 0 && zones.ball) {
-        if (auto d = detour(p, dir, dist, *zones.ball, intent.avoid_ball_radius)) dir = *d;
-      }
-      if (corridor) {
-        const Vec2 q = geom::project(p + dir * std::min(dist, 0.5), *corridor).point;
-        if (auto d = detour(p, dir, dist, q, zones.placement_corridor_radius)) dir = *d;
-      }
-      // Other robots: pass the nearest one on the way within kRobotLookAhead (planner I's local detour;
-      // planner II plans around all of them). A robot standing on our target is not gone around.
+      // Other robots first: pass the nearest one on the way within kRobotLookAhead (planner I's local
+      // detour; planner II plans around all of them); the rule zones below then correct that direction. A
+      // robot standing on our target is not gone around.
       std::optional<Vec2> around_robot;
       double nearest = kRobotLookAhead;
       for (const Vec2& other : zones.robots) {
@@ -192,6 +190,13 @@ RobotCommand SimpleMotionPlanner::plan(const wm::RobotState& robot, const Motion
         }
       }
       if (around_robot) dir = *around_robot;
+      if (intent.avoid_ball_radius > 0 && zones.ball) {
+        if (auto d = detour(p, dir, dist, *zones.ball, intent.avoid_ball_radius)) dir = *d;
+      }
+      if (corridor) {
+        const Vec2 q = geom::project(p + dir * std::min(dist, 0.5), *corridor).point;
+        if (auto d = detour(p, dir, dist, q, zones.placement_corridor_radius)) dir = *d;
+      }
       const auto around_box = [&](const Box& box, bool towards_positive_x) {
         bool hit = false;
         for (int i = 1; i <= 8 && !hit; ++i) hit = box.contains(p + dir * (dist * i / 8.0));

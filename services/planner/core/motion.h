@@ -35,6 +35,7 @@ struct MotionIntent {
   bool avoid_placement_corridor = false;  // keep out of the ball -> designated position stadium
   bool avoid_their_defense_area = true;   // keep the rule distance (+ margin) from their defense area
   bool avoid_our_defense_area = true;     // false only for the goalkeeper
+  bool may_enter_boundary = false;        // the placer fetching a ball: up to the walls, not only the lines
   bool dribble = false;
   KickType kick = KickType::kNone;  // armed: the kicker fires when the ball touches it
   double kick_speed = 0;            // m/s
@@ -52,6 +53,7 @@ struct Zones {
   double their_defense_margin = 0.3;     // m, robot centre distance from their defense area
   double our_defense_margin = 0.1;       // m, robot centre distance from our defense area (non-keepers)
   double field_margin = 0.05;            // m, how far beyond the field lines a centre may go
+  double wall_margin = 0.11;             // m, robot centre from the walls when it may enter the boundary
   std::vector<Vec2> robots;              // every visible robot, ours and theirs (the planned one included)
 };
 

@@ -453,6 +453,23 @@ void play_timeout(const Situation& s, PlayMemory& memory, TeamIntents& out) {
   fill(s, memory, kParkKey, park_set(s), tmpl, reserved, out);
 }
 
+/// The pull-back of a ball lying too near a wall to be approached from behind (placement).
+struct PullBackParams {
+  double speed = 0.3;            // m/s backwards with the ball on the dribbler
+  double approach_margin = 0.12;  // m beyond the dribbler the placer waits behind a ball before taking it
+  double clear_of_wall = 0.05;   // m more than that approach point needs before the ball is released
+};
+
+/// Whether the placer can stand behind `ball` (seen from the target along `u`) at the approach distance,
+/// inside the walls (the placer may enter the boundary).
+bool approachable_from_behind(const Situation& s, const Vec2& ball, const Vec2& u, double extra) {
+  const PullBackParams params;
+  const Vec2 behind = ball - u * (dribbler_distance(s) + params.approach_margin + extra);
+  const double reach_x = s.field.half_length() + s.field.size().boundary_width - s.zones.wall_margin;
+  const double reach_y = s.field.half_width() + s.field.size().boundary_width - s.zones.wall_margin;
+  return std::abs(behind.x()) <= reach_x && std::abs(behind.y()) <= reach_y;
+}
+
 void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents& out) {
   if (!s.placement_target) {
     play_stop(s, memory, out, "our_ball_placement_no_target");
@@ -475,14 +492,26 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
     const Vec2 rel = placer->position - s.ball;
     const bool holds_ball = rel.norm() < dd + 0.04 && (-rel).normalized().dot(heading) > std::cos(0.35);
     const double ball_error = (s.ball - target).norm();
+    const PullBackParams pull;
+    const Vec2 u = unit_or(target - s.ball, heading);
+    const bool from_behind = approachable_from_behind(s, s.ball, u, 0);
     using P = PlayMemory::PlacePhase;
     switch (memory.place_phase) {
       case P::kApproach:
         // A ball already on the target (placed by the simulator, or left there) is not touched again.
         if (ball_error < s.config->placement_tolerance * 0.5) {
           memory.place_phase = P::kRelease;
-        } else if (holds_ball) {
+        } else if (holds_ball && from_behind) {
           memory.place_phase = P::kCarry;
+        } else if (!from_behind && rel.norm() < dd - 0.005 && (-rel).normalized().dot(heading) > std::cos(0.35)) {
+          memory.place_phase = P::kPullBack;  // pressed against the ball: the dribbler holds it
+        }
+        break;
+      case P::kPullBack:
+        if (approachable_from_behind(s, s.ball, u, pull.clear_of_wall)) {
+          memory.place_phase = P::kRelease;
+        } else if (rel.norm() > dd + 0.1) {
+          memory.place_phase = P::kApproach;  // lost the ball: take it again
         }
         break;
       case P::kCarry:
@@ -499,9 +528,26 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
     MotionIntent intent = base_intent(s, "place_ball");
     intent.max_speed = std::min(stop_speed(s), s.config->ball_placement_speed);
     intent.role = "placer";
-    const Vec2 u = unit_or(target - s.ball, heading);
+    intent.may_enter_boundary = true;  // the ball may lie between the lines and the walls
     switch (memory.place_phase) {
       case P::kApproach: {
+        if (!from_behind) {
+          // Too near a wall to get behind it: take it from the field side, facing the wall.
+          const double along = rel.dot(u);  // > 0: the placer is on the target side of the ball
+          const double lateral = std::abs(geom::cross(u, rel));
+          intent.orientation = geom::angle_of(Vec2(-u)).radians();
+          if (along > 0.05 && lateral < 0.04) {
+            intent.target = s.ball + u * (dd - 0.02);
+            intent.dribble = true;
+            intent.max_speed = 0.5;
+            intent.skill = "get_ball_from_the_field_side";
+          } else {
+            intent.target = s.ball + u * (dd + pull.approach_margin);
+            intent.avoid_ball_radius = dd + 0.06;
+            intent.skill = "approach_ball";
+          }
+          break;
+        }
         const double along = rel.dot(u);
         const double lateral = std::abs(geom::cross(u, rel));
         const double heading_error = std::acos(std::clamp(heading.dot(u), -1.0, 1.0));
@@ -528,6 +574,14 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
         intent.skill = "dribble_to";
         break;
       }
+      case P::kPullBack:
+        // Backwards towards the target, the ball held by the dribbler, until it can be taken from behind.
+        intent.target = placer->position + u * 0.3;
+        intent.orientation = geom::angle_of(Vec2(-u)).radians();
+        intent.dribble = true;
+        intent.max_speed = pull.speed;
+        intent.skill = "pull_back";
+        break;
       case P::kRelease:
         // Straight away from the ball (behind the dribbler after a carry).
         intent.target = s.ball + unit_or(rel, -heading) * (ball_clearance(s) + 0.05);

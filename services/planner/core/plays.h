@@ -44,7 +44,10 @@ struct Situation {
 
 /// What the team remembers between ticks for stable decisions.
 struct PlayMemory {
-  enum class PlacePhase { kApproach, kCarry, kRelease };
+  // Approach the ball from behind (seen from the target), carry it there, let it go. A ball too near a
+  // wall to be approached from behind is first pulled back: taken from the field side, then dribbled
+  // backwards away from the wall (kPullBack), released, and placed as usual.
+  enum class PlacePhase { kApproach, kCarry, kRelease, kPullBack };
 
   explicit PlayMemory(double hysteresis = 0.3)
       : assigner(hysteresis), kicker(hysteresis), placer(hysteresis) {}
