@@ -113,13 +113,6 @@ bool is_finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y
 
 double sign_of(double value) { return value < 0 ? -1.0 : 1.0; }
 
-double distance_to_segment(const Vec2& point, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (point - (a + t * ab)).norm();
-}
-
 /// An axis-aligned defense area and the two ways a robot can be in it.
 struct Area {
   Vec2 min;
@@ -240,18 +233,24 @@ void BuiltinReferee::step(const Observation& observation, Timestamp now) {
     case Phase::kRunning:
       decision = judge_running(seen, now);
       if (!decision && penalty_kicker_) decision = judge_kick_timeout(seen, now);
+      if (!decision && state_.stage != Stage::kPenaltyShootout) decision = judge_running_fouls(seen, now);
       break;
     case Phase::kPlacing:
-      judge_keep_out(seen, now);
+      judge_placement_interference(seen, now);
       decision = judge_placement(seen, now);
       break;
     case Phase::kStopped:
     case Phase::kPreparing:
       judge_keep_out(seen, now);
+      if (phase_ == Phase::kStopped) {
+        judge_stop_speed(seen, now);
+        judge_defense_area_distance(seen, now);
+      }
       decision = automatic_continuation(seen, now);
       break;
     case Phase::kKickPending:
       judge_keep_out(seen, now);
+      if (is_direct_free(state_.command)) judge_defense_area_distance(seen, now);
       decision = judge_kick_timeout(seen, now);
       // A penalty's ball in play is judged like any running ball (goal, out), and still times out.
       if (!decision && phase_ == Phase::kRunning) decision = judge_running(seen, now);
@@ -260,6 +259,7 @@ void BuiltinReferee::step(const Observation& observation, Timestamp now) {
     case Phase::kTimeout:
       break;
   }
+  judge_boundary_crossing(seen, now);
   if (decision) apply(*decision, now);
 }
 
@@ -317,12 +317,13 @@ void BuiltinReferee::begin(Timestamp now) {
     if (state_.stage_time_left && ((is_half(state_.stage) && clock_runs) || is_break(state_.stage))) {
       *state_.stage_time_left -= elapsed;
     }
+    if (is_half(state_.stage) && clock_runs) run_card_clocks(elapsed);
     if (command == Command::kTimeoutYellow) state_.yellow.timeout_time_left -= elapsed;
     if (command == Command::kTimeoutBlue) state_.blue.timeout_time_left -= elapsed;
   }
   if (phase_ == Phase::kPlacing) {
     state_.current_action_time_remaining =
-        duration_from_seconds(profile_.game.placement_timeout) - (now - command_since_);
+        duration_from_seconds(profile_.game.placement_timeout + placement_extra_time_) - (now - command_since_);
   } else if (phase_ == Phase::kKickPending) {
     state_.current_action_time_remaining = duration_from_seconds(restart_timeout()) - (now - command_since_);
   }
@@ -374,14 +375,14 @@ BuiltinReferee::CleanObservation BuiltinReferee::clean(const Observation& observ
       seen.robots.push_back(robot);
     }
   }
+  estimate_robot_velocities(seen, now);
   return seen;
 }
 
-void BuiltinReferee::update_last_touch(const CleanObservation& seen) {
-  if (!seen.ball) return;
-  const double reach = field_.robot_radius + field_.ball_radius + kTouchMargin;
+std::optional<BuiltinReferee::Touch> BuiltinReferee::toucher(const CleanObservation& seen, double margin) const {
+  if (!seen.ball) return std::nullopt;
   const ObservedRobot* nearest = nullptr;
-  double nearest_distance = reach;
+  double nearest_distance = field_.robot_radius + field_.ball_radius + margin;
   for (const ObservedRobot& robot : seen.robots) {
     const double distance = (robot.position - *seen.ball).norm();
     if (distance <= nearest_distance) {
@@ -389,7 +390,19 @@ void BuiltinReferee::update_last_touch(const CleanObservation& seen) {
       nearest = &robot;
     }
   }
-  if (nearest != nullptr) last_touch_ = Touch{nearest->team, nearest->id};
+  if (nearest == nullptr) return std::nullopt;
+  return Touch{nearest->team, nearest->id};
+}
+
+void BuiltinReferee::update_last_touch(const CleanObservation& seen) {
+  if (const std::optional<Touch> touch = toucher(seen, kTouchMargin)) last_touch_ = touch;
+}
+
+std::pair<Vec2, Vec2> BuiltinReferee::defense_area_of(TeamColor defending_team) const {
+  const double goal_x = goal_x_of(defending_team);
+  const double inner_x = goal_x - sign_of(goal_x) * field_.defense_area_depth;
+  const double half_width = 0.5 * field_.defense_area_width;
+  return {{std::min(goal_x, inner_x), -half_width}, {std::max(goal_x, inner_x), half_width}};
 }
 
 void BuiltinReferee::track_kick(const CleanObservation& seen) {
@@ -398,6 +411,10 @@ void BuiltinReferee::track_kick(const CleanObservation& seen) {
     kick_reference_ball_ = seen.ball;
   } else if ((*seen.ball - *kick_reference_ball_).norm() >= kInPlayDistance) {
     start_running();
+    // Double touch: the kicker of this restart may not touch the ball again before another robot did.
+    if (last_touch_ && executing_team_ && last_touch_->team == *executing_team_) {
+      kicker_watch_ = KickerWatch{*last_touch_, *seen.ball};
+    }
   }
 }
 
@@ -450,6 +467,11 @@ void BuiltinReferee::apply(const Transition& transition, Timestamp now) {
   awaiting_hand_placement_ = transition.awaiting_hand_placement;
   command_since_ = now;
   keep_out_since_.clear();
+  interference_since_.clear();
+  area_distance_since_.clear();
+  too_fast_in_stop_.clear();
+  placement_extra_time_ = 0;
+  kicker_watch_.reset();
   placement_ok_since_.reset();
   kick_reference_ball_ = last_ball_;
 
@@ -514,6 +536,8 @@ void BuiltinReferee::apply(const Transition& transition, Timestamp now) {
 
 void BuiltinReferee::start_running() {
   phase_ = Phase::kRunning;
+  dribble_.reset();
+  ball_in_own_area_since_.reset();
   state_.game_events.clear();  // the league's game_events are those since the last running state
   ball_inside_since_running_.reset();
   progress_ball_.reset();
@@ -836,6 +860,8 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_ball_left_field(
     const double max_x = half_length - rule.line_distance;
     placement_point = {std::clamp(exit.x(), -max_x, max_x), y_sign * (half_width - rule.line_distance)};
   }
+  ball_left_field_ = {now, last_touch_};
+  boundary_crossing_raised_ = false;
   GameEvent left{
       .type = over_goal_line ? GameEventType::kBallLeftFieldGoalLine : GameEventType::kBallLeftFieldTouchLine,
       .location = exit};
@@ -911,7 +937,9 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_placement(const 
                         .reason = "ball placed by " + std::string(to_string(placer))};
     }
   }
-  if (now - command_since_ < duration_from_seconds(profile_.game.placement_timeout)) return std::nullopt;
+  if (now - command_since_ < duration_from_seconds(profile_.game.placement_timeout + placement_extra_time_)) {
+    return std::nullopt;
+  }
 
   TeamInfo& info = team_info(placer);
   ++info.ball_placement_failures;
@@ -952,10 +980,8 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_defense_areas(co
   if (!rule.enabled) return std::nullopt;
   const double radius = field_.robot_radius;
   const auto area_of = [this](TeamColor defending_team) {
-    const double goal_x = goal_x_of(defending_team);
-    const double inner_x = goal_x - sign_of(goal_x) * field_.defense_area_depth;
-    const double half_width = 0.5 * field_.defense_area_width;
-    return Area{{std::min(goal_x, inner_x), -half_width}, {std::max(goal_x, inner_x), half_width}};
+    const auto [min, max] = defense_area_of(defending_team);
+    return Area{min, max};
   };
 
   for (const TeamColor team : {TeamColor::kYellow, TeamColor::kBlue}) {
@@ -1027,18 +1053,13 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_defense_areas(co
 void BuiltinReferee::judge_keep_out(const CleanObservation& seen, Timestamp now) {
   const KeepOutRule& rule = profile_.rules.keep_out;
   if (!rule.enabled || !seen.ball) return;
-  const bool placing = phase_ == Phase::kPlacing && state_.designated_position.has_value();
   // In STOP both teams keep out; during a restart the team executing it may approach.
   const bool both_teams = phase_ == Phase::kStopped || !executing_team_;
   const TeamColor executing = executing_team_.value_or(TeamColor::kYellow);
   const time::Duration persistence = duration_from_seconds(rule.violation_persistence);
   for (const ObservedRobot& robot : seen.robots) {
     if (!both_teams && robot.team == executing) continue;
-    // During a placement the whole path of the ball to its target is kept clear (a stadium).
-    const double centre_distance =
-        placing ? distance_to_segment(robot.position, *seen.ball, *state_.designated_position)
-                : (robot.position - *seen.ball).norm();
-    const double distance = centre_distance - field_.robot_radius;
+    const double distance = (robot.position - *seen.ball).norm() - field_.robot_radius;
     const auto key = std::pair{robot.team, robot.id};
     if (distance >= rule.radius) {
       keep_out_since_.erase(key);
@@ -1047,8 +1068,7 @@ void BuiltinReferee::judge_keep_out(const CleanObservation& seen, Timestamp now)
     auto& [since, reported] = keep_out_since_.try_emplace(key, now, false).first->second;
     if (reported || now - since < persistence) continue;
     reported = true;
-    raise({.type =
-               placing ? GameEventType::kBotInterferedPlacement : GameEventType::kDefenderTooCloseToKickPoint,
+    raise({.type = GameEventType::kDefenderTooCloseToKickPoint,
            .by_team = to_team(robot.team),
            .by_bot = robot.id,
            .location = robot.position,
@@ -1060,9 +1080,12 @@ void BuiltinReferee::judge_keep_out(const CleanObservation& seen, Timestamp now)
 void BuiltinReferee::raise(GameEvent event, Timestamp now, bool is_foul) {
   event.id = "builtin-" + std::to_string(++event_sequence_);
   event.created_referee = now;
-  if (is_foul && event.by_team == Team::kYellow) ++state_.yellow.foul_counter;
-  if (is_foul && event.by_team == Team::kBlue) ++state_.blue.foul_counter;
+  const Team foul_by = is_foul ? event.by_team : Team::kUnknown;
   state_.game_events.push_back(std::move(event));
+  if (foul_by == Team::kUnknown) return;
+  const TeamColor team = foul_by == Team::kYellow ? TeamColor::kYellow : TeamColor::kBlue;
+  ++team_info(team).foul_counter;
+  book(team, now);
 }
 
 TeamInfo& BuiltinReferee::team_info(TeamColor team) {

@@ -62,10 +62,24 @@
 //    NORMAL_START, a free kick's free_kick_timeout after the command, kicked or not (no command changes;
 //    current_action_time_remaining counts down to it). A penalty still undecided penalty_timeout after
 //    NORMAL_START failed: kPenaltyKickFailed, STOP, goal kick (free kick) for the defenders.
-//  * keep-out: in STOP every robot, during a restart (placement, preparation, free kick before the ball
-//    is in play) the other team's robots, must keep `radius` between their nearest side and the ball (for
-//    a placement: the segment ball -> target). Inside for `violation_persistence` -> one foul per stay
+//  * keep-out (defender too close to the kick point): in STOP every robot, during a kickoff, penalty
+//    preparation or free kick (before the ball is in play) the other team's robots, must keep `radius`
+//    between their nearest side and the ball. Inside for `violation_persistence` -> one foul per stay
 //    (foul_counter +1); the command does not change.
+//  * placement interference: during a placement the other team keeps `radius` from the stadium ball ->
+//    target; inside for `violation_persistence` -> BOT_INTERFERED_PLACEMENT, a foul, `extra_time` more for
+//    the placing team.
+//  * fouls (builtin_referee_fouls.cpp; each rule its own profile section, numbers of the rules 13.3-13.6):
+//    while running, non-stopping: crash (unique / drawn), kick too fast; stopping (STOP, then the other
+//    team's free kick where the ball was, placed first when it is not a legal spot): double touch,
+//    dribbling too far, keeper holding the ball, too many robots; after the ball left the field, a ball
+//    seen beyond the walls within kBoundaryCrossingWindow is also a boundary crossing (a foul of the last
+//    toucher, the free kick stays the other team's). In STOP: too fast. In STOP and free kicks before the
+//    ball is in play: too close to the opponent's defense area. A non-stopping foul is raised again for the
+//    same robots only after kFoulRepeat. Robot speeds are the observation's or estimated over
+//    kSpeedBaseline.
+//  * cards: every fouls_per_card-th foul of a team -> MULTIPLE_FOULS and a yellow card (max_allowed_bots
+//    one lower for yellow_card_duration of playing time); a third concurrent one is a red card.
 // game_events holds the events since the ball was last in play, each with a unique id "builtin-<n>".
 //
 // Stages, as the Game Controller runs them: NORMAL_FIRST_HALF_PRE -> (NORMAL_START / FORCE_START)
@@ -90,6 +104,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -143,6 +158,7 @@ struct ObservedRobot {
   TeamColor team = TeamColor::kYellow;
   std::uint32_t id = 0;  // 0..15 (vision patterns); others are ignored
   geom::Vec2 position = geom::Vec2::Zero();
+  std::optional<geom::Vec2> velocity;  // m/s; absent: estimated from successive positions (over 0.1 s)
 };
 
 struct Observation {
@@ -175,6 +191,10 @@ class BuiltinReferee {
   static constexpr double kTimeoutBudget = 300;              // s per team
   static constexpr std::uint32_t kMaxPlacementFailures = 5;  // then the team may no longer place
   static constexpr double kRestartDefenseAreaDistance = 1.0;  // m a restart's ball keeps from defense areas
+  static constexpr double kFoulRepeat = 2.0;                // s before a non-stopping foul is raised again
+  static constexpr double kBoundaryCrossingWindow = 1.0;    // s after the ball left the field
+  static constexpr double kCrashContactMargin = 0.01;       // m beyond two robot radii that counts as contact
+  static constexpr double kDribblingReachMargin = 0.01;     // m beyond robot + ball radius: in the dribbler
 
   /// Starts in NORMAL_FIRST_HALF_PRE with HALT and the profile's kickoff as next_command (issued after a
   /// STOP by itself with auto_continue). The first step() or command() stamps the initial command time.
@@ -236,6 +256,10 @@ class BuiltinReferee {
                                  std::string reason) const;
 
   CleanObservation clean(const Observation& observation, time::Timestamp now);
+  /// The robot touching the ball now: the nearest with centres within robot + ball radius + `margin`.
+  std::optional<Touch> toucher(const CleanObservation& observation, double margin) const;
+  /// A team's own defense area (min, max corners), SSL-Vision frame.
+  std::pair<geom::Vec2, geom::Vec2> defense_area_of(TeamColor defending_team) const;
   void track_kick(const CleanObservation& observation);
   void update_last_touch(const CleanObservation& observation);
 
@@ -261,6 +285,32 @@ class BuiltinReferee {
   std::optional<Transition> after_shootout_penalty(time::Timestamp now);
   bool match_decided_early() const;
   void judge_keep_out(const CleanObservation& observation, time::Timestamp now);
+
+  // Fouls (builtin_referee_fouls.cpp).
+  void estimate_robot_velocities(CleanObservation& observation, time::Timestamp now);
+  std::optional<Transition> judge_running_fouls(const CleanObservation& observation, time::Timestamp now);
+  void judge_crashes(const CleanObservation& observation, time::Timestamp now);
+  void judge_ball_speed(const CleanObservation& observation, time::Timestamp now);
+  std::optional<Transition> judge_double_touch(const CleanObservation& observation, time::Timestamp now);
+  std::optional<Transition> judge_dribbling(const CleanObservation& observation, time::Timestamp now);
+  std::optional<Transition> judge_keeper_held_ball(const CleanObservation& observation, time::Timestamp now);
+  std::optional<Transition> judge_robot_count(const CleanObservation& observation, time::Timestamp now);
+  void judge_boundary_crossing(const CleanObservation& observation, time::Timestamp now);
+  void judge_stop_speed(const CleanObservation& observation, time::Timestamp now);
+  void judge_defense_area_distance(const CleanObservation& observation, time::Timestamp now);
+  void judge_placement_interference(const CleanObservation& observation, time::Timestamp now);
+  /// STOP, then the other team's free kick where the ball was (placed first if that is no legal spot).
+  Transition free_kick_after_foul(TeamColor offender, const std::optional<geom::Vec2>& ball,
+                                  const std::string& reason) const;
+  /// The nearest spot to `p` where a free kick may be taken (line_distance inside the lines, away from the
+  /// defense areas); `p` itself when it is one.
+  geom::Vec2 legal_free_kick_spot(const geom::Vec2& p) const;
+  /// A non-stopping foul `key` may be raised now (not raised within kFoulRepeat before).
+  bool may_raise_again(const std::string& key, time::Timestamp now);
+  /// Cards for the team of a foul just counted.
+  void book(TeamColor team, time::Timestamp now);
+  /// Yellow cards count down with the playing time; expired ones give the robot back.
+  void run_card_clocks(time::Duration elapsed);
 
   Transition free_kick_after_ball_left(TeamColor kicking_team, const geom::Vec2& placement_point,
                                        const std::string& reason) const;
@@ -308,6 +358,32 @@ class BuiltinReferee {
 
   // Keep-out: since when each robot (team, id) has been too close, and whether it was already reported.
   std::map<std::pair<TeamColor, std::uint32_t>, std::pair<time::Timestamp, bool>> keep_out_since_;
+  // The same for placement interference and the distance to the opponent's defense area.
+  std::map<std::pair<TeamColor, std::uint32_t>, std::pair<time::Timestamp, bool>> interference_since_;
+  std::map<std::pair<TeamColor, std::uint32_t>, std::pair<time::Timestamp, bool>> area_distance_since_;
+  double placement_extra_time_ = 0;  // s added to the current placement's time by interference fouls
+
+  // Fouls: robot speeds over a baseline, repeats, and what each stopping rule tracks.
+  std::map<std::pair<TeamColor, std::uint32_t>, std::pair<geom::Vec2, time::Timestamp>> robot_speed_reference_;
+  std::map<std::pair<TeamColor, std::uint32_t>, geom::Vec2> robot_velocity_;
+  std::map<std::string, time::Timestamp> last_raised_;
+  std::set<std::pair<TeamColor, std::uint32_t>> too_fast_in_stop_;  // reported in this STOP
+  bool ball_too_fast_ = false;  // the current kick was reported
+  struct KickerWatch {  // double touch: the kicker of the restart now in play
+    Touch kicker;
+    geom::Vec2 kick_point;
+    bool released = false;  // it was out of contact since
+  };
+  std::optional<KickerWatch> kicker_watch_;
+  struct Dribble {
+    Touch robot;
+    geom::Vec2 start;
+  };
+  std::optional<Dribble> dribble_;
+  std::optional<std::pair<TeamColor, time::Timestamp>> ball_in_own_area_since_;
+  std::optional<time::Timestamp> too_many_since_[2];  // by TeamColor index
+  std::optional<std::pair<time::Timestamp, std::optional<Touch>>> ball_left_field_;  // when, last toucher
+  bool boundary_crossing_raised_ = false;
 };
 
 }  // namespace ssl::referee

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -970,6 +971,7 @@ TEST(BuiltinReferee, TheShootoutGoesToSuddenDeathAfterFivePenaltiesEach) {
 TEST(BuiltinReferee, TenGoalsWithALeadOfTwoEndTheMatchEarly) {
   RefereeProfile profile = builtin_profile("arcade");
   profile.rules.goal_detection.cooldown = 0;
+  profile.game.early_end_goals = 10;  // arcade plays on whatever the score
   BuiltinReferee referee = running_referee(profile);
   double t = 1;
   for (int goal = 0; goal < 10; ++goal) {
@@ -989,6 +991,331 @@ TEST(BuiltinReferee, WithoutTheNoProgressRuleARestingBallIsLeftAlone) {
   for (double t = 0; t <= 30.0; t += 0.01) referee.step(ball_at({1.0, 1.0}), at(t));
   EXPECT_EQ(referee.state().command, Command::kForceStart);
   EXPECT_EQ(last_event(referee), nullptr);
+}
+
+
+// ---------------------------------------------------------------------------------------------------------
+// Fouls (strict_ai has every rule on; blue defends +x: blue's area x in [3.5, 4.5], |y| <= 1)
+
+ObservedRobot moving(ObservedRobot robot, Vec2 velocity) {
+  robot.velocity = velocity;
+  return robot;
+}
+
+std::size_t count_events(const BuiltinReferee& referee, GameEventType type) {
+  return static_cast<std::size_t>(std::count_if(referee.state().game_events.begin(), referee.state().game_events.end(),
+                                                [&](const GameEvent& e) { return e.type == type; }));
+}
+
+struct CrashCase {
+  const char* name;
+  double yellow_speed;  // m/s towards blue (+x)
+  double blue_speed;    // m/s towards yellow (-x)
+  std::optional<GameEventType> expected;
+  Team by_team;
+};
+
+class CrashTest : public ::testing::TestWithParam<CrashCase> {};
+
+TEST_P(CrashTest, ARelativeSpeedAboveOnePointFiveIsACrashOfTheFasterOrOfBoth) {
+  const CrashCase c = GetParam();
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  referee.step(ball_at({2, 2}, {moving(yellow(1, {0, 0}), {c.yellow_speed, 0}),
+                                moving(blue(2, {0.185, 0}), {-c.blue_speed, 0})}),
+               at(1));
+  if (!c.expected) {
+    EXPECT_EQ(count_events(referee, GameEventType::kBotCrashUnique) + count_events(referee, GameEventType::kBotCrashDrawn),
+              0u);
+    return;
+  }
+  const GameEvent* crash = last_event(referee);
+  ASSERT_NE(crash, nullptr);
+  EXPECT_EQ(crash->type, *c.expected);
+  EXPECT_NEAR(*crash->value, c.yellow_speed + c.blue_speed, 1e-9);
+  expect_near(crash->location, {0.0925, 0});
+  EXPECT_EQ(referee.state().command, Command::kForceStart) << "non-stopping";
+  if (*c.expected == GameEventType::kBotCrashDrawn) {
+    EXPECT_EQ(crash->by_bot, 1u) << "the yellow robot";
+    EXPECT_EQ(crash->other_bot, 2u) << "the blue robot";
+    EXPECT_EQ(referee.state().yellow.foul_counter, 1u);
+    EXPECT_EQ(referee.state().blue.foul_counter, 1u);
+  } else {
+    EXPECT_EQ(crash->by_team, c.by_team);
+    EXPECT_EQ(crash->by_bot, c.by_team == Team::kYellow ? 1u : 2u);
+    EXPECT_EQ(crash->other_bot, c.by_team == Team::kYellow ? 2u : 1u);
+    EXPECT_EQ(c.by_team == Team::kYellow ? referee.state().yellow.foul_counter : referee.state().blue.foul_counter, 1u);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BuiltinReferee, CrashTest,
+    ::testing::Values(CrashCase{"JustBelowTheSpeed", 1.49, 0.0, std::nullopt, Team::kUnknown},
+                      CrashCase{"JustAboveTheSpeed", 1.51, 0.0, GameEventType::kBotCrashUnique, Team::kYellow},
+                      CrashCase{"BlueFaster", 0.2, 1.4, GameEventType::kBotCrashUnique, Team::kBlue},
+                      CrashCase{"DifferenceJustBelowDrawn", 0.94, 0.66, GameEventType::kBotCrashDrawn, Team::kUnknown},
+                      CrashCase{"DifferenceJustAboveDrawn", 0.96, 0.64, GameEventType::kBotCrashUnique, Team::kYellow}),
+    [](const ::testing::TestParamInfo<CrashCase>& param_info) { return std::string(param_info.param.name); });
+
+TEST(BuiltinReferee, ACrashIsRaisedAgainOnlyAfterTwoSeconds) {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  const Observation crash = ball_at({2, 2}, {moving(yellow(1, {0, 0}), {2, 0}), blue(2, {0.185, 0})});
+  referee.step(crash, at(1));
+  referee.step(crash, at(2.9));
+  EXPECT_EQ(referee.state().yellow.foul_counter, 1u);
+  referee.step(crash, at(3.1));
+  EXPECT_EQ(referee.state().yellow.foul_counter, 2u);
+}
+
+TEST(BuiltinReferee, TooFastInStopAfterTheGraceOncePerRobot) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  ASSERT_TRUE(referee.command(Command::kStop, at(0)));
+  referee.step(ball_at({0, 0}, {moving(yellow(1, {-2, 0}), {3, 0})}), at(1.9));
+  EXPECT_EQ(referee.state().yellow.foul_counter, 0u) << "within the 2 s grace";
+  referee.step(ball_at({0, 0}, {moving(yellow(1, {-2, 0}), {1.49, 0}), moving(blue(3, {2, 0}), {0, 1.49})}), at(2.1));
+  EXPECT_EQ(referee.state().yellow.foul_counter + referee.state().blue.foul_counter, 0u) << "1.49 m/s";
+  referee.step(ball_at({0, 0}, {moving(yellow(1, {-2, 0}), {1.51, 0})}), at(2.2));
+  const GameEvent* fast = last_event(referee);
+  ASSERT_NE(fast, nullptr);
+  EXPECT_EQ(fast->type, GameEventType::kBotTooFastInStop);
+  EXPECT_EQ(fast->by_team, Team::kYellow);
+  EXPECT_EQ(fast->by_bot, 1u);
+  EXPECT_NEAR(*fast->value, 1.51, 1e-9);
+  expect_near(fast->location, {-2, 0});
+  referee.step(ball_at({0, 0}, {moving(yellow(1, {-2, 0}), {2, 0})}), at(3));
+  EXPECT_EQ(referee.state().yellow.foul_counter, 1u) << "once per robot and STOP";
+  EXPECT_EQ(referee.state().command, Command::kStop);
+}
+
+TEST(BuiltinReferee, RobotSpeedsAreEstimatedFromPositionsWhenNotGiven) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  ASSERT_TRUE(referee.command(Command::kStop, at(0)));
+  for (int i = 0; i <= 30; ++i) {  // 1.0 m/s with 3 mm of noise: never too fast
+    const double noise = (i % 2 == 0 ? 0.003 : -0.003);
+    referee.step(ball_at({0, 0}, {yellow(1, {-2 + 0.01 * i + noise, 1})}), at(2.0 + 0.01 * i));
+  }
+  EXPECT_EQ(referee.state().yellow.foul_counter, 0u);
+  for (int i = 0; i <= 30; ++i) referee.step(ball_at({0, 0}, {yellow(1, {-1 + 0.02 * i, 1})}), at(3.0 + 0.01 * i));
+  EXPECT_EQ(referee.state().yellow.foul_counter, 1u) << "2 m/s";
+}
+
+/// A free kick for yellow from (0, 0): yellow 2 kicks it to +x (in play at t = 1.1).
+BuiltinReferee referee_after_free_kick() {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  EXPECT_TRUE(referee.command(Command::kDirectFreeYellow, at(0)));
+  referee.step(ball_at({0, 0}, {yellow(2, {-0.11, 0})}), at(1));
+  referee.step(ball_at({0.06, 0}, {yellow(2, {-0.11, 0})}), at(1.1));
+  EXPECT_TRUE(referee.game_running());
+  return referee;
+}
+
+TEST(BuiltinReferee, TheKickerTouchingAgainFirstIsADoubleTouch) {
+  BuiltinReferee referee = referee_after_free_kick();
+  referee.step(ball_at({0.5, 0}, {yellow(2, {-0.11, 0})}), at(1.2));  // released
+  referee.step(ball_at({0.6, 0}, {yellow(2, {0.49, 0})}), at(1.5));   // touches again
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
+  const GameEvent* touch = nullptr;
+  for (const GameEvent& e : referee.state().game_events) {
+    if (e.type == GameEventType::kAttackerDoubleTouchedBall) touch = &e;
+  }
+  ASSERT_NE(touch, nullptr);
+  EXPECT_EQ(touch->by_team, Team::kYellow);
+  EXPECT_EQ(touch->by_bot, 2u);
+  expect_near(touch->location, {0.6, 0});
+  EXPECT_EQ(referee.state().yellow.foul_counter, 1u);
+}
+
+TEST(BuiltinReferee, AnotherRobotsTouchClearsTheKicker) {
+  BuiltinReferee referee = referee_after_free_kick();
+  referee.step(ball_at({0.5, 0}, {yellow(2, {-0.11, 0}), blue(4, {0.61, 0})}), at(1.2));
+  referee.step(ball_at({0.6, 0}, {yellow(2, {0.49, 0})}), at(1.5));
+  EXPECT_EQ(referee.state().command, Command::kDirectFreeYellow);
+  EXPECT_EQ(referee.state().yellow.foul_counter, 0u);
+}
+
+TEST(BuiltinReferee, TheKickerStayingInContactCountsOnlyBeyondTheDistance) {
+  for (const auto& [travel, foul] : {std::pair{0.04, false}, std::pair{0.06, true}}) {
+    // Yellow 2 pushes the ball from (0, 0) without letting go: in play at 0.06 m, then `travel` further.
+    BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+    ASSERT_TRUE(referee.command(Command::kDirectFreeYellow, at(0)));
+    referee.step(ball_at({0, 0}, {yellow(2, {-0.11, 0})}), at(1));
+    referee.step(ball_at({0.06, 0}, {yellow(2, {-0.05, 0})}), at(1.1));
+    ASSERT_TRUE(referee.game_running());
+    referee.step(ball_at({0.06 + travel, 0}, {yellow(2, {travel - 0.05, 0})}), at(1.2));
+    EXPECT_EQ(referee.state().yellow.foul_counter, foul ? 1u : 0u) << travel << " m in contact";
+  }
+}
+
+TEST(BuiltinReferee, AKickFasterThanSixPointFiveIsAFoulOncePerKick) {
+  for (const auto& [speed, foul] : {std::pair{6.49, false}, std::pair{6.51, true}}) {
+    BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+    referee.step(ball_at({0, 0}, {yellow(1, {-0.11, 0})}), at(1));
+    referee.step({.ball_position = Vec2(0.1, 0), .ball_velocity = Vec2(speed, 0)}, at(1.02));
+    referee.step({.ball_position = Vec2(0.2, 0), .ball_velocity = Vec2(speed, 0)}, at(1.04));
+    EXPECT_EQ(count_events(referee, GameEventType::kBotKickedBallTooFast), foul ? 1u : 0u) << speed;
+    if (!foul) continue;
+    const GameEvent* kick = last_event(referee);
+    EXPECT_EQ(kick->by_team, Team::kYellow);
+    EXPECT_EQ(kick->by_bot, 1u);
+    EXPECT_NEAR(*kick->value, 6.51, 1e-9);
+    EXPECT_EQ(referee.state().command, Command::kForceStart) << "non-stopping";
+  }
+}
+
+TEST(BuiltinReferee, DribblingFurtherThanOneMetreIsAFoul) {
+  for (const auto& [distance, foul] : {std::pair{0.99, false}, std::pair{1.01, true}}) {
+    BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+    for (int i = 0; i <= 10; ++i) {
+      const double x = -1 + distance * i / 10.0;
+      referee.step(ball_at({x, 1}, {yellow(1, {x - 0.11, 1})}), at(1 + 0.1 * i));
+    }
+    EXPECT_EQ(count_events(referee, GameEventType::kBotDribbledBallTooFar), foul ? 1u : 0u) << distance;
+    if (!foul) continue;
+    const GameEvent* dribble = last_event(referee);
+    ASSERT_EQ(dribble->type, GameEventType::kBotDribbledBallTooFar);
+    EXPECT_EQ(dribble->by_bot, 1u);
+    expect_near(dribble->location, {-1, 1});
+    expect_near(dribble->secondary_location, {-1 + distance, 1});
+    EXPECT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
+  }
+}
+
+TEST(BuiltinReferee, ABallKickedOverTheWallIsABoundaryCrossing) {
+  for (const auto& [y, crossing] : {std::pair{3.29, false}, std::pair{3.31, true}}) {
+    BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+    referee.step(ball_at({1.0, 2.9}, {blue(2, {1.0, 2.79})}), at(1));
+    referee.step(ball_at({1.0, 3.1}), at(1.1));  // over the touch line: placement for yellow
+    referee.step(ball_at({1.0, y}), at(1.2));
+    EXPECT_EQ(count_events(referee, GameEventType::kBoundaryCrossing), crossing ? 1u : 0u) << y;
+    EXPECT_EQ(referee.state().blue.foul_counter, crossing ? 1u : 0u);
+    EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow) << "the free kick stays yellow's";
+  }
+}
+
+TEST(BuiltinReferee, NearTheOpponentsDefenseAreaInStopIsAFoulAfterTheGrace) {
+  for (const auto& [gap, foul] : {std::pair{0.19, true}, std::pair{0.21, false}}) {
+    BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+    ASSERT_TRUE(referee.command(Command::kStop, at(0)));
+    const Observation near = ball_at({0, 0}, {yellow(3, {3.5 - 0.09 - gap, 2.5})});  // outside the area's y range
+    const Observation close = ball_at({0, 0}, {yellow(3, {3.5 - 0.09 - gap, 0.5})});
+    referee.step(gap < 0.2 ? close : near, at(1));
+    referee.step(close, at(2.9));
+    referee.step(close, at(3.1));
+    EXPECT_EQ(count_events(referee, GameEventType::kAttackerTooCloseToDefenseArea), foul ? 1u : 0u) << gap;
+    if (!foul) continue;
+    EXPECT_EQ(last_event(referee)->by_bot, 3u);
+    EXPECT_NEAR(*last_event(referee)->value, gap, 1e-9);
+    expect_near(last_event(referee)->secondary_location, {0, 0});
+  }
+}
+
+TEST(BuiltinReferee, TheBallLyingInADefenseAreaTooLongIsKeeperHoldingTheBall) {
+  for (const auto& [seconds, foul] : {std::pair{9.9, false}, std::pair{10.1, true}}) {
+    BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+    // In blue's area, moving 0.06 m now and then (no "no progress").
+    for (double t = 0; t <= seconds + 1e-9; t += 0.05) {
+      referee.step(ball_at({3.9 + 0.06 * std::floor(t), 0.2}, {blue(0, {4.3, 0})}), at(1 + t));
+    }
+    EXPECT_EQ(count_events(referee, GameEventType::kKeeperHeldBall), foul ? 1u : 0u) << seconds;
+    if (!foul) continue;
+    EXPECT_EQ(last_event(referee)->type, GameEventType::kKeeperHeldBall);
+    EXPECT_EQ(last_event(referee)->by_team, Team::kBlue);
+    EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow) << "to a legal free-kick spot";
+    EXPECT_EQ(referee.state().next_command, Command::kDirectFreeYellow);
+  }
+}
+
+TEST(BuiltinReferee, MoreRobotsThanAllowedAfterTheGraceIsAFoul) {
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));  // 6 allowed
+  std::vector<ObservedRobot> seven;
+  for (std::uint32_t id = 0; id < 7; ++id) seven.push_back(yellow(id, {-3.0 + 0.4 * id, -2.0}));
+  std::vector<ObservedRobot> six(seven.begin(), seven.end() - 1);
+  for (double t = 1; t <= 20; t += 0.5) referee.step(ball_at({0, 0.06 * (static_cast<int>(t) % 2)}, six), at(t));
+  EXPECT_EQ(count_events(referee, GameEventType::kTooManyRobots), 0u);
+  referee.step(ball_at({0, 0}, seven), at(21));
+  referee.step(ball_at({0, 0.1}, seven), at(30.9));
+  EXPECT_EQ(referee.state().command, Command::kForceStart) << "within the 10 s grace";
+  referee.step(ball_at({0, 0.2}, seven), at(31.1));
+  const GameEvent* count = last_event(referee);
+  ASSERT_NE(count, nullptr);
+  EXPECT_EQ(count->type, GameEventType::kTooManyRobots);
+  EXPECT_EQ(count->by_team, Team::kYellow);
+  EXPECT_EQ(count->text, "7 on field, 6 allowed");
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
+}
+
+TEST(BuiltinReferee, EveryThirdFoulIsAYellowCardThatTakesARobotFor120SecondsOfPlay) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  ASSERT_TRUE(referee.command(Command::kStop, at(0)));
+  std::vector<ObservedRobot> fast;
+  for (std::uint32_t id = 1; id <= 3; ++id) fast.push_back(moving(yellow(id, {-2, -1.0 + id}), {2, 0}));
+  referee.step(ball_at({0, 0}, {fast[0], fast[1]}), at(2.5));
+  EXPECT_EQ(referee.state().yellow.foul_counter, 2u);
+  EXPECT_EQ(referee.state().yellow.yellow_cards, 0u);
+  referee.step(ball_at({0, 0}, fast), at(2.6));
+  const TeamInfo& yellow_team = referee.state().yellow;
+  EXPECT_EQ(yellow_team.foul_counter, 3u);
+  EXPECT_EQ(yellow_team.yellow_cards, 1u);
+  ASSERT_EQ(yellow_team.yellow_card_times_left.size(), 1u);
+  EXPECT_EQ(yellow_team.yellow_card_times_left[0], duration_from_seconds(120));
+  EXPECT_EQ(yellow_team.max_allowed_bots, 5u);
+  EXPECT_EQ(count_events(referee, GameEventType::kMultipleFouls), 1u);
+
+  // The card's clock runs with the game only.
+  referee.step(ball_at({0, 0}), at(30));
+  EXPECT_EQ(referee.state().yellow.yellow_card_times_left[0], duration_from_seconds(120)) << "not in STOP";
+  ASSERT_TRUE(referee.command(Command::kForceStart, at(30)));
+  for (double t = 30; t < 149.9; t += 1) referee.step(ball_at({0, 0.06 * (static_cast<int>(t) % 2)}), at(t));
+  referee.step(ball_at({0, 0}), at(149.9));
+  EXPECT_EQ(referee.state().yellow.max_allowed_bots, 5u) << "119.9 s of play";
+  referee.step(ball_at({0, 0.06}), at(150.1));
+  EXPECT_TRUE(referee.state().yellow.yellow_card_times_left.empty());
+  EXPECT_EQ(referee.state().yellow.max_allowed_bots, 6u) << "the robot may come back";
+}
+
+TEST(BuiltinReferee, AThirdConcurrentYellowCardIsARedCard) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  double t = 0;
+  for (int stop = 0; stop < 3; ++stop) {
+    ASSERT_TRUE(referee.command(Command::kStop, at(t)));
+    std::vector<ObservedRobot> fast;
+    for (std::uint32_t id = 1; id <= 3; ++id) fast.push_back(moving(yellow(id, {-2, -1.0 + id}), {2, 0}));
+    referee.step(ball_at({0, 0}, fast), at(t + 2.5));
+    t += 3;
+  }
+  EXPECT_EQ(referee.state().yellow.yellow_cards, 2u);
+  EXPECT_EQ(referee.state().yellow.red_cards, 1u);
+  EXPECT_EQ(referee.state().yellow.max_allowed_bots, 3u);
+}
+
+TEST(BuiltinReferee, APlacementInterferenceGivesThePlacingTeamTenSecondsMore) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  ASSERT_TRUE(referee.command(Command::kBallPlacementYellow, at(0), Vec2(1.0, 0.0)));
+  const Observation in_the_way = ball_at({-1, 0}, {blue(4, {0.0, 0.3})});  // 0.21 m from the path's side
+  referee.step(in_the_way, at(0.5));
+  referee.step(in_the_way, at(2.6));
+  const GameEvent* interfered = last_event(referee);
+  ASSERT_NE(interfered, nullptr);
+  EXPECT_EQ(interfered->type, GameEventType::kBotInterferedPlacement);
+  EXPECT_EQ(interfered->by_team, Team::kBlue);
+  EXPECT_EQ(interfered->by_bot, 4u);
+  EXPECT_EQ(referee.state().blue.foul_counter, 1u);
+  referee.step(ball_at({-1, 0}), at(3));
+  EXPECT_EQ(referee.state().current_action_time_remaining, duration_from_seconds(37)) << "30 + 10 - 3";
+  referee.step(ball_at({-1, 0}), at(39.9));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow);
+  referee.step(ball_at({-1, 0}), at(40.1));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementBlue);
+}
+
+TEST(BuiltinReferee, TheArcadeProfileJudgesNoFouls) {
+  BuiltinReferee referee = running_referee(builtin_profile("arcade"));
+  std::vector<ObservedRobot> seven;
+  for (std::uint32_t id = 0; id < 7; ++id) seven.push_back(moving(yellow(id, {-3.0 + 0.4 * id, -2.0}), {3, 0}));
+  seven.push_back(moving(blue(1, {-3.0 + 0.185, -2.0}), {-3, 0}));
+  for (double t = 1; t <= 30; t += 0.5) referee.step(ball_at({0, 0}, seven), at(t));
+  EXPECT_EQ(referee.state().yellow.foul_counter + referee.state().blue.foul_counter, 0u);
+  EXPECT_EQ(referee.state().command, Command::kForceStart);
 }
 
 }  // namespace

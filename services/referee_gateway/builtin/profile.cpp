@@ -85,6 +85,98 @@ Fields<NoProgressRule> no_progress_fields() {
   };
 }
 
+Fields<PlacementInterferenceRule> placement_interference_fields() {
+  return {
+      field("enabled", &PlacementInterferenceRule::enabled),
+      field("radius", &PlacementInterferenceRule::radius).unit("m").range(0, 3)
+          .doc("the other team's robots keep this from the stadium ball -> target"),
+      field("violation_persistence", &PlacementInterferenceRule::violation_persistence).unit("s").range(0, 60),
+      field("extra_time", &PlacementInterferenceRule::extra_time).unit("s").range(0, 60)
+          .doc("added to the placing team's time per foul"),
+  };
+}
+
+Fields<CrashRule> crash_fields() {
+  return {
+      field("enabled", &CrashRule::enabled),
+      field("speed", &CrashRule::speed).unit("m/s").range(0.1, 10)
+          .doc("relative speed along the line between the centres above which a contact is a crash"),
+      field("drawn_speed_difference", &CrashRule::drawn_speed_difference).unit("m/s").range(0, 10)
+          .doc("both robots foul when their speeds differ by less"),
+  };
+}
+
+Fields<StopSpeedRule> stop_speed_fields() {
+  return {
+      field("enabled", &StopSpeedRule::enabled),
+      field("max_speed", &StopSpeedRule::max_speed).unit("m/s").range(0.1, 10),
+      field("grace", &StopSpeedRule::grace).unit("s").range(0, 60).doc("after the STOP command"),
+  };
+}
+
+Fields<DoubleTouchRule> double_touch_fields() {
+  return {
+      field("enabled", &DoubleTouchRule::enabled),
+      field("distance", &DoubleTouchRule::distance).unit("m").range(0.01, 1)
+          .doc("the kicker may stay in contact while the ball travels this far"),
+  };
+}
+
+Fields<BallSpeedRule> ball_speed_fields() {
+  return {
+      field("enabled", &BallSpeedRule::enabled),
+      field("max_speed", &BallSpeedRule::max_speed).unit("m/s").range(1, 20),
+  };
+}
+
+Fields<BoundaryCrossingRule> boundary_crossing_fields() {
+  return {
+      field("enabled", &BoundaryCrossingRule::enabled),
+      field("boundary_width", &BoundaryCrossingRule::boundary_width).unit("m").range(0.05, 2)
+          .doc("from the field lines to the walls"),
+  };
+}
+
+Fields<DribblingRule> dribbling_fields() {
+  return {
+      field("enabled", &DribblingRule::enabled),
+      field("max_distance", &DribblingRule::max_distance).unit("m").range(0.1, 20),
+  };
+}
+
+Fields<AttackerDefenseAreaDistanceRule> attacker_defense_area_distance_fields() {
+  return {
+      field("enabled", &AttackerDefenseAreaDistanceRule::enabled),
+      field("distance", &AttackerDefenseAreaDistanceRule::distance).unit("m").range(0, 2)
+          .doc("from the opponent's defense area to a robot's nearest side"),
+      field("violation_persistence", &AttackerDefenseAreaDistanceRule::violation_persistence).unit("s").range(0, 60),
+  };
+}
+
+Fields<KeeperHeldBallRule> keeper_held_ball_fields() {
+  return {
+      field("enabled", &KeeperHeldBallRule::enabled),
+      nested("time", &KeeperHeldBallRule::time, division_seconds_fields(1, 600))
+          .doc("the ball may lie in a team's own defense area this long while running"),
+  };
+}
+
+Fields<RobotCountRule> robot_count_fields() {
+  return {
+      field("enabled", &RobotCountRule::enabled),
+      field("grace", &RobotCountRule::grace).unit("s").range(0, 600).doc("to take a robot off"),
+  };
+}
+
+Fields<CardRule> card_fields() {
+  return {
+      field("enabled", &CardRule::enabled),
+      field("fouls_per_card", &CardRule::fouls_per_card).range(1, 100),
+      field("yellow_card_duration", &CardRule::yellow_card_duration).unit("s").range(1, 3600)
+          .doc("of playing time"),
+  };
+}
+
 Fields<RefereeRules> rules_fields() {
   return {
       nested("goal_detection", &RefereeRules::goal_detection, goal_detection_fields()),
@@ -92,6 +184,18 @@ Fields<RefereeRules> rules_fields() {
       nested("defense_area", &RefereeRules::defense_area, defense_area_fields()),
       nested("keep_out", &RefereeRules::keep_out, keep_out_fields()),
       nested("no_progress", &RefereeRules::no_progress, no_progress_fields()),
+      nested("placement_interference", &RefereeRules::placement_interference, placement_interference_fields()),
+      nested("crash", &RefereeRules::crash, crash_fields()),
+      nested("stop_speed", &RefereeRules::stop_speed, stop_speed_fields()),
+      nested("double_touch", &RefereeRules::double_touch, double_touch_fields()),
+      nested("ball_speed", &RefereeRules::ball_speed, ball_speed_fields()),
+      nested("boundary_crossing", &RefereeRules::boundary_crossing, boundary_crossing_fields()),
+      nested("dribbling", &RefereeRules::dribbling, dribbling_fields()),
+      nested("attacker_defense_area_distance", &RefereeRules::attacker_defense_area_distance,
+             attacker_defense_area_distance_fields()),
+      nested("keeper_held_ball", &RefereeRules::keeper_held_ball, keeper_held_ball_fields()),
+      nested("robot_count", &RefereeRules::robot_count, robot_count_fields()),
+      nested("cards", &RefereeRules::cards, card_fields()),
   };
 }
 

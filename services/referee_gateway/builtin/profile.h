@@ -49,10 +49,91 @@ struct DefenseAreaRule {
   bool attacker_infringement = false;  // an attacker in the opponent's area is a foul (free kick defenders)
 };
 
+/// Defender too close to the kick point: in STOP every robot, during the other team's kickoff, penalty
+/// preparation or free kick (before the ball is in play) the defenders keep `radius` from the ball.
 struct KeepOutRule {
   bool enabled = false;
   double radius = 0;                 // m from the ball to the robot's nearest side (0.5 per rules)
   double violation_persistence = 0;  // s a robot must stay too close before it is a foul
+};
+
+/// Interfering with a placement: the other team's robots keep `radius` from the stadium ball -> target.
+struct PlacementInterferenceRule {
+  bool enabled = false;
+  double radius = 0;                 // m (0.5 per rules)
+  double violation_persistence = 0;  // s (2 per rules)
+  double extra_time = 0;             // s added to the placing team's time per foul (10 per rules)
+};
+
+/// Non-stopping: two robots of different teams touching with a relative speed along the line between
+/// their centres above `speed`: the faster one fouls (BOT_CRASH_UNIQUE), or both when their speeds differ
+/// by less than `drawn_speed_difference` (BOT_CRASH_DRAWN).
+struct CrashRule {
+  bool enabled = false;
+  double speed = 0;                   // m/s (1.5 per rules)
+  double drawn_speed_difference = 0;  // m/s (0.3 per rules)
+};
+
+/// In STOP every robot stays at or below `max_speed` once `grace` passed since the command.
+struct StopSpeedRule {
+  bool enabled = false;
+  double max_speed = 0;  // m/s (1.5 per rules)
+  double grace = 0;      // s (2 per rules)
+};
+
+/// Stopping: the kicker of a kickoff or free kick touches the ball again before another robot did (or
+/// stays in contact while it travels more than `distance`): free kick for the other team.
+struct DoubleTouchRule {
+  bool enabled = false;
+  double distance = 0;  // m (0.05 per rules)
+};
+
+/// Non-stopping: a robot accelerates the ball beyond `max_speed`.
+struct BallSpeedRule {
+  bool enabled = false;
+  double max_speed = 0;  // m/s (6.5 per rules)
+};
+
+/// Stopping: the ball kicked over the field boundary (beyond the walls): free kick for the other team.
+struct BoundaryCrossingRule {
+  bool enabled = false;
+  double boundary_width = 0;  // m from the field lines to the walls (0.3 per rules)
+};
+
+/// Stopping: a robot dribbles the ball more than `max_distance` from where its contact started.
+struct DribblingRule {
+  bool enabled = false;
+  double max_distance = 0;  // m (1 per rules)
+};
+
+/// During STOP and free kicks (before the ball is in play) robots keep `distance` from the opponent's
+/// defense area; inside it for `violation_persistence`: a foul.
+struct AttackerDefenseAreaDistanceRule {
+  bool enabled = false;
+  double distance = 0;               // m (0.2 per rules)
+  double violation_persistence = 0;  // s (2 per rules)
+};
+
+/// Stopping: the ball lies in a team's own defense area longer than `time` while running.
+struct KeeperHeldBallRule {
+  bool enabled = false;
+  DivisionSeconds time;  // s (5 A / 10 B per rules)
+};
+
+/// Stopping: more robots of a team on the field than it may have (max_allowed_bots, lowered by yellow
+/// cards) for longer than `grace` (the time to take a robot off).
+struct RobotCountRule {
+  bool enabled = false;
+  double grace = 0;  // s (10 per rules)
+};
+
+/// Cards: every `fouls_per_card`-th foul of a team raises MULTIPLE_FOULS and a yellow card, which lowers
+/// the team's max_allowed_bots by one for `yellow_card_duration` of playing time; a yellow card while two
+/// are active is a red card (the robot stays off for the rest of the match).
+struct CardRule {
+  bool enabled = false;
+  std::uint32_t fouls_per_card = 0;  // (3 per rules)
+  double yellow_card_duration = 0;   // s of playing time (120 per rules)
 };
 
 /// A game that does not go on: the ball not moved 0.05 m while running for `timeout` (rules: 5 s in
@@ -69,6 +150,17 @@ struct RefereeRules {
   DefenseAreaRule defense_area;
   KeepOutRule keep_out;
   NoProgressRule no_progress;
+  PlacementInterferenceRule placement_interference;
+  CrashRule crash;
+  StopSpeedRule stop_speed;
+  DoubleTouchRule double_touch;
+  BallSpeedRule ball_speed;
+  BoundaryCrossingRule boundary_crossing;
+  DribblingRule dribbling;
+  AttackerDefenseAreaDistanceRule attacker_defense_area_distance;
+  KeeperHeldBallRule keeper_held_ball;
+  RobotCountRule robot_count;
+  CardRule cards;
 };
 
 /// Extra time and the shoot-out (rules: elimination matches that are drawn after the second half).

@@ -94,22 +94,24 @@ TEST(RefereeProfile, AnOutOfRangeValueNamesItsKey) {
 }
 
 TEST(RefereeProfile, AMissingKeyAndABadKickoffTeamAreBothNamed) {
-  const std::string yaml = R"(name: mine
-rules:
-  goal_detection: {enabled: true, cooldown: 1.0}
-  out_of_bounds: {enabled: false, ball_placement: false, line_distance: 0.2, goal_kick_distance: 1.0}
-  defense_area: {enabled: false, max_defenders: 1, attacker_infringement: false}
-  keep_out: {enabled: false, radius: 0.5}
-game:
-  half_duration: 300
-  half_time: 300
-  kickoff_team: green
-  force_start_after_goal: true
-  auto_continue: true
-  stop_duration: 2
-  placement_timeout: 30
-  placement_tolerance: 0.15
-)";
+  // strict_ai as YAML, with one key taken out and one value made invalid.
+  auto strict = load_referee_profile("strict_ai");
+  ASSERT_TRUE(strict) << strict.error().message;
+  std::string yaml = referee_profile_yaml(*strict);
+  const auto remove_line_with = [&](const std::string& text) {
+    const std::size_t at = yaml.find(text);
+    ASSERT_NE(at, std::string::npos) << text;
+    const std::size_t begin = yaml.rfind('\n', at) + 1;
+    yaml.erase(begin, yaml.find('\n', at) + 1 - begin);
+  };
+  const std::size_t keep_out = yaml.find("keep_out:");
+  ASSERT_NE(keep_out, std::string::npos);
+  const std::size_t persistence = yaml.find("violation_persistence:", keep_out);
+  ASSERT_NE(persistence, std::string::npos);
+  remove_line_with(yaml.substr(persistence, yaml.find('\n', persistence) - persistence));
+  const std::size_t kickoff = yaml.find("kickoff_team: yellow");
+  ASSERT_NE(kickoff, std::string::npos);
+  yaml.replace(kickoff, std::string("kickoff_team: yellow").size(), "kickoff_team: green");
   auto loaded = load_referee_profile_from_string(yaml, "mine.yaml");
   ASSERT_FALSE(loaded);
   const std::string& message = loaded.error().message;
