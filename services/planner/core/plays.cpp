@@ -685,6 +685,43 @@ void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& o
 
 // ---- base strategy --------------------------------------------------------------------------------------
 
+/// Behind the ball on the line along `u` (where a kick sends it), the dribbler at it, facing along `u`
+/// within `max_heading_error` (rad): a kick now goes along `u`.
+bool behind_ball_facing(const Situation& s, const wm::RobotState& robot, const Vec2& u, double max_heading_error) {
+  const Vec2 rel = robot.position - s.ball;
+  const double along = rel.dot(u);
+  const double lateral = std::abs(geom::cross(u, rel));
+  const double dd = dribbler_distance(s);
+  const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
+  return along < -(dd - 0.03) && along > -(dd + 0.06) && lateral < 0.03 && heading.dot(u) > std::cos(max_heading_error);
+}
+
+/// Drive through the ball along `u` with the kicker armed.
+void kick_intent(const Situation& s, const Vec2& u, MotionIntent& intent) {
+  intent.target = s.ball + u * 0.2;
+  intent.orientation = geom::angle_of(u).radians();
+  intent.max_speed = 1.0;
+  intent.kick = KickType::kFlat;
+  intent.kick_speed = s.config->kick_speed;
+  intent.skill = "kick";
+}
+
+/// Get behind the ball on the line along `u`: align when already close behind it, else go around it.
+void approach_intent(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent& intent) {
+  const Vec2 rel = robot.position - s.ball;
+  const double dd = dribbler_distance(s);
+  intent.orientation = geom::angle_of(u).radians();
+  if (rel.dot(u) < -0.06 && std::abs(geom::cross(u, rel)) < 0.08) {
+    intent.target = s.ball - u * (dd + 0.01);
+    intent.max_speed = 1.0;
+    intent.skill = "align";
+  } else {
+    intent.target = s.ball - u * (dd + 0.2);
+    intent.avoid_ball_radius = dd + 0.1;
+    intent.skill = "approach_ball";
+  }
+}
+
 /// In normal play the keeper clears a slow ball lying in our defense area or within kKeeperClearMargin of
 /// it: no field player may fetch it there (robots keep out of our area, and an attacker behind the ball
 /// would stand inside it), so without the keeper such a ball lies until the no-progress restart.
@@ -706,26 +743,10 @@ void write_keeper_clearing(const Situation& s, Ids& reserved, TeamIntents& out) 
   intent.avoid_our_defense_area = false;
   intent.role = "goalkeeper";
   const Vec2 u = unit_or(s.ball - s.field.our_goal_center(), Vec2(1, 0));
-  const Vec2 rel = keeper->position - s.ball;
-  const double along = rel.dot(u);
-  const double lateral = std::abs(geom::cross(u, rel));
-  const double dd = dribbler_distance(s);
-  const Vec2 heading = geom::Angle::from_radians(keeper->orientation).to_unit_vector();
-  intent.orientation = geom::angle_of(u).radians();
-  if (along < -(dd - 0.03) && along > -(dd + 0.06) && lateral < 0.03 && heading.dot(u) > std::cos(0.15)) {
-    intent.target = s.ball + u * 0.2;
-    intent.max_speed = 1.0;
-    intent.kick = KickType::kFlat;
-    intent.kick_speed = s.config->kick_speed;
-    intent.skill = "kick";
-  } else if (along < -0.06 && lateral < 0.08) {
-    intent.target = s.ball - u * (dd + 0.01);
-    intent.max_speed = 1.0;
-    intent.skill = "align";
+  if (behind_ball_facing(s, *keeper, u, 0.15)) {
+    kick_intent(s, u, intent);
   } else {
-    intent.target = s.ball - u * (dd + 0.2);
-    intent.avoid_ball_radius = dd + 0.1;
-    intent.skill = "approach_ball";
+    approach_intent(s, *keeper, u, intent);
   }
   write(s, out, *s.keeper, intent);
 }
@@ -748,26 +769,14 @@ std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s
 bool attacker_ready_to_kick(const Situation& s, std::uint32_t attacker) {
   const wm::RobotState* robot = find_robot(s, attacker);
   if (!robot || !s.ball_known) return false;
-  const Vec2 u = unit_or(shot_target(s) - s.ball, Vec2(1, 0));
-  const Vec2 rel = robot->position - s.ball;
-  const double along = rel.dot(u);
-  const double lateral = std::abs(geom::cross(u, rel));
-  const double dd = dribbler_distance(s);
-  const Vec2 heading = geom::Angle::from_radians(robot->orientation).to_unit_vector();
-  return along < -(dd - 0.03) && along > -(dd + 0.06) && lateral < 0.03 && heading.dot(u) > std::cos(0.1);
+  return behind_ball_facing(s, *robot, unit_or(shot_target(s) - s.ball, Vec2(1, 0)), 0.1);
 }
 
 void strategy_kick(const Situation& s, std::uint32_t attacker, TeamIntents& out) {
   MotionIntent intent = base_intent(s, "attack");
-  const Vec2 u = unit_or(shot_target(s) - s.ball, Vec2(1, 0));
-  intent.target = s.ball + u * 0.2;
-  intent.orientation = geom::angle_of(u).radians();
-  intent.max_speed = 1.0;
-  intent.kick = KickType::kFlat;
-  intent.kick_speed = s.config->kick_speed;
+  kick_intent(s, unit_or(shot_target(s) - s.ball, Vec2(1, 0)), intent);
   intent.avoid_their_defense_area = false;  // the target may lie just inside; the shot happens before
   intent.role = "attacker";
-  intent.skill = "kick";
   write(s, out, attacker, intent);
 }
 
@@ -775,20 +784,8 @@ void strategy_approach(const Situation& s, std::uint32_t attacker, TeamIntents& 
   const wm::RobotState* robot = find_robot(s, attacker);
   if (!robot) return;
   MotionIntent intent = base_intent(s, "attack");
-  const Vec2 u = unit_or(shot_target(s) - s.ball, Vec2(1, 0));
-  const Vec2 rel = robot->position - s.ball;
-  const double dd = dribbler_distance(s);
-  intent.orientation = geom::angle_of(u).radians();
   intent.role = "attacker";
-  if (rel.dot(u) < -0.06 && std::abs(geom::cross(u, rel)) < 0.08) {
-    intent.target = s.ball - u * (dd + 0.01);
-    intent.max_speed = 1.0;
-    intent.skill = "align";
-  } else {
-    intent.target = s.ball - u * (dd + 0.2);
-    intent.avoid_ball_radius = dd + 0.1;
-    intent.skill = "approach_ball";
-  }
+  approach_intent(s, *robot, unit_or(shot_target(s) - s.ball, Vec2(1, 0)), intent);
   write(s, out, attacker, intent);
 }
 

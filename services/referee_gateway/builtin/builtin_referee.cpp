@@ -7,27 +7,19 @@
 #include <limits>
 #include <set>
 
+#include "services/referee_gateway/builtin/commands.h"
+
 namespace ssl::referee {
 namespace {
 
+using builtin::ball_placement;
+using builtin::direct_free;
+using builtin::kickoff;
+using builtin::penalty;
+using builtin::to_team;
 using geom::Vec2;
 using time::duration_from_seconds;
 using time::Timestamp;
-
-Team to_team(TeamColor color) { return color == TeamColor::kYellow ? Team::kYellow : Team::kBlue; }
-
-Command kickoff(TeamColor team) {
-  return team == TeamColor::kYellow ? Command::kPrepareKickoffYellow : Command::kPrepareKickoffBlue;
-}
-Command penalty(TeamColor team) {
-  return team == TeamColor::kYellow ? Command::kPreparePenaltyYellow : Command::kPreparePenaltyBlue;
-}
-Command direct_free(TeamColor team) {
-  return team == TeamColor::kYellow ? Command::kDirectFreeYellow : Command::kDirectFreeBlue;
-}
-Command ball_placement(TeamColor team) {
-  return team == TeamColor::kYellow ? Command::kBallPlacementYellow : Command::kBallPlacementBlue;
-}
 
 /// The team a command is for (kicker, placer, team in timeout); nullopt for team-less commands.
 std::optional<TeamColor> team_of(Command command) {
@@ -639,23 +631,11 @@ std::optional<Vec2> BuiltinReferee::placement_needed_for(Command restart, const 
   if (is_penalty(restart)) return unless_near(penalty_mark_against(opponent(*team_of(restart))));
   if (restart != Command::kForceStart) return std::nullopt;
   // FORCE_START: anywhere inside the field lines. A ball beyond them (in a goal, in the boundary, beyond the
-  // walls) goes to the nearest point line_distance inside them, kept kRestartDefenseAreaDistance from both
-  // defense areas.
-  const double half_length = 0.5 * field_.field_length;
-  const double half_width = 0.5 * field_.field_width;
-  if (std::abs(ball->x()) <= half_length && std::abs(ball->y()) <= half_width) return std::nullopt;
-  const double inset = profile_.rules.out_of_bounds.line_distance;
-  Vec2 spot(std::clamp(ball->x(), -(half_length - inset), half_length - inset),
-            std::clamp(ball->y(), -(half_width - inset), half_width - inset));
-  const double clear_x = half_length - field_.defense_area_depth - kRestartDefenseAreaDistance;
-  const double clear_y = 0.5 * field_.defense_area_width + kRestartDefenseAreaDistance;
-  if (std::abs(spot.x()) > clear_x && std::abs(spot.y()) < clear_y) {
-    // In front of a goal: out of the area's reach along x or along y, whichever is nearer.
-    const Vec2 along_x(sign_of(spot.x()) * clear_x, spot.y());
-    const Vec2 along_y(spot.x(), sign_of(spot.y()) * clear_y);
-    spot = (along_x - spot).norm() <= (along_y - spot).norm() ? along_x : along_y;
+  // walls) goes to the nearest legal free-kick spot.
+  if (std::abs(ball->x()) <= 0.5 * field_.field_length && std::abs(ball->y()) <= 0.5 * field_.field_width) {
+    return std::nullopt;
   }
-  return spot;
+  return legal_free_kick_spot(*ball);
 }
 
 BuiltinReferee::Transition BuiltinReferee::placement_before(Command restart, const Vec2& target,

@@ -6,22 +6,17 @@
 #include <cmath>
 
 #include "services/referee_gateway/builtin/builtin_referee.h"
+#include "services/referee_gateway/builtin/commands.h"
 
 namespace ssl::referee {
 namespace {
 
+using builtin::ball_placement;
+using builtin::direct_free;
+using builtin::to_team;
 using geom::Vec2;
 using time::duration_from_seconds;
 using time::Timestamp;
-
-Team to_team(TeamColor color) { return color == TeamColor::kYellow ? Team::kYellow : Team::kBlue; }
-
-Command direct_free(TeamColor team) {
-  return team == TeamColor::kYellow ? Command::kDirectFreeYellow : Command::kDirectFreeBlue;
-}
-Command ball_placement(TeamColor team) {
-  return team == TeamColor::kYellow ? Command::kBallPlacementYellow : Command::kBallPlacementBlue;
-}
 
 double distance_to_segment(const Vec2& point, const Vec2& a, const Vec2& b) {
   const Vec2 ab = b - a;
