@@ -64,18 +64,7 @@ Fields<PlannerServiceConfig> service_fields() {
 
 }  // namespace
 
-wm::FieldSize division_field(Division division) {
-  wm::FieldSize field;  // division A
-  if (division == Division::kB) {
-    field.field_length = 9.0;
-    field.field_width = 6.0;
-    field.goal_width = 1.0;
-    field.penalty_area_depth = 1.0;
-    field.penalty_area_width = 2.0;
-    field.goal_center_to_penalty_mark = 6.0;
-  }
-  return field;
-}
+wm::FieldSize division_field(Division division) { return FieldGeometry::of(division); }
 
 Result<PlannerServiceConfig> load_planner_config(const std::string& path, const std::vector<std::string>& overrides) {
   auto loaded = config::load_file(path, service_fields(), overrides);

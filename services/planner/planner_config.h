@@ -2,6 +2,7 @@
 // start; flags (--team) and --set override single keys. Units per key in the schema (planner_config.cpp).
 #pragma once
 
+#include "libs/domain/division.h"
 #include <string>
 #include <vector>
 
@@ -15,8 +16,6 @@ namespace ssl::planner {
 ///                 arrive sooner are folded into the next tick);
 ///  kFixedRate:    at tick_rate Hz with the newest world.state (none while it is stale).
 enum class TickMode { kOnWorldState, kFixedRate };
-
-enum class Division { kA, kB };
 
 struct PlannerServiceConfig {
   TeamColor team = TeamColor::kBlue;

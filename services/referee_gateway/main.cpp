@@ -121,13 +121,12 @@ int main(int argc, char** argv) {
   std::unique_ptr<ssl::referee::BuiltinRefereeService> referee;
   if (builtin) {
     const auto& b = config->builtin;
-    const bool division_a = b.division == ssl::Division::kA;
     auto opened = ssl::referee::BuiltinRefereeService::open(
         {.group = network.referee_group,
          .port = network.referee_port,
          .interface_address = network.interface_address,
          .profile = *profile,
-         .field = division_a ? ssl::referee::FieldGeometry::division_a() : ssl::referee::FieldGeometry::division_b(),
+         .field = ssl::FieldGeometry::of(b.division),
          .setup = {.yellow = {b.yellow_team, static_cast<std::uint32_t>(b.yellow_goalkeeper)},
                    .blue = {b.blue_team, static_cast<std::uint32_t>(b.blue_goalkeeper)},
                    .division = b.division,

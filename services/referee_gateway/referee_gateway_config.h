@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "libs/common/division.h"
+#include "libs/domain/division.h"
 #include "libs/common/result.h"
 #include "libs/common/team.h"
 #include "services/referee_gateway/core/gateway.h"

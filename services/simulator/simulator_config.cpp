@@ -105,7 +105,7 @@ std::string simulator_config_yaml(const SimulatorConfig& config) { return config
 
 SimulatorOptions simulator_options(const SimulatorConfig& config) {
   SimulatorOptions options;
-  options.field = config.division == Division::kA ? FieldGeometry::division_a() : FieldGeometry::division_b();
+  options.field = FieldGeometry::of(config.division);
   options.vision.camera_count = config.cameras.count;
   options.vision.frame_rate = config.cameras.frame_rate;
   options.vision.camera_overlap = config.cameras.overlap;

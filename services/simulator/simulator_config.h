@@ -2,6 +2,7 @@
 // Command-line flags override single keys after loading. Units are stated per key in the schema.
 #pragma once
 
+#include "libs/domain/division.h"
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -12,7 +13,6 @@
 
 namespace ssl::sim {
 
-enum class Division { kA, kB };
 enum class Mode { kRealtime, kFast, kLockstep };
 enum class RealismProfile { kNone, kRealistic, kCompetition };
 

@@ -62,7 +62,7 @@
 #include "services/planner/core/planner_test_util.h"
 #include "services/simulator/core/simulator.h"
 #include "services/world_model/core/sim_harness.h"
-#include "services/world_model/core/team_frame.h"
+#include "libs/domain/team_frame.h"
 #include "services/world_model/core/world_model.h"
 
 namespace ssl::planner {
@@ -153,7 +153,7 @@ class LockstepMatch {
       t.model->on_geometry(wm::testing::from_sim(sim_.geometry()));
       PlannerConfig planner_config;
       planner_config.team = team;
-      planner_config.default_field = wm::testing::field_size(field_);
+      planner_config.default_field = field_;
       t.planner.emplace(planner_config);
     }
     referee_.info.blue_team_on_positive_half = side.blue_on_positive_half;
@@ -408,7 +408,7 @@ class Eventually {
 
 /// Robot-centre distance to a team's OPPONENT defense area (our frame: theirs at +x, ours at -x).
 double distance_to_opponent_defense_area(const sim::FieldGeometry& f, const TrueRobot& r) {
-  const wm::Field field(wm::testing::field_size(f));
+  const wm::Field field(f);
   return testing::distance_to_their_defense_area(field, r.ours ? r.position : Vec2(-r.position));
 }
 

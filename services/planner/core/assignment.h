@@ -16,7 +16,7 @@
 #include <optional>
 #include <span>
 
-#include "services/world_model/core/types.h"
+#include "libs/domain/world.h"
 
 namespace ssl::planner {
 

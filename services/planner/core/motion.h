@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "services/planner/core/planner.h"
-#include "services/world_model/core/field.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/team_field.h"
+#include "libs/domain/world.h"
 
 namespace ssl::planner {
 

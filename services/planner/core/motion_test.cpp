@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "services/planner/core/rules.h"
-#include "services/world_model/core/game_state.h"
+#include "libs/domain/game_state.h"
 
 namespace ssl::planner {
 namespace {

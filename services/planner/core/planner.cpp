@@ -8,8 +8,8 @@
 #include "services/planner/core/motion.h"
 #include "services/planner/core/plays.h"
 #include "services/planner/core/rules.h"
-#include "services/world_model/core/game_state.h"
-#include "services/world_model/core/team_frame.h"
+#include "libs/domain/game_state.h"
+#include "libs/domain/team_frame.h"
 
 namespace ssl::planner {
 namespace {

@@ -27,7 +27,7 @@
 
 #include "libs/common/team.h"
 #include "libs/time/time.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/world.h"
 
 namespace ssl::planner {
 

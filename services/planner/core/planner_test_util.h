@@ -15,9 +15,9 @@
 #include "libs/geometry/angle.h"
 #include "services/planner/core/motion.h"
 #include "services/planner/core/planner.h"
-#include "services/world_model/core/field.h"
-#include "services/world_model/core/team_frame.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/team_field.h"
+#include "libs/domain/team_frame.h"
+#include "libs/domain/world.h"
 
 namespace ssl::planner::testing {
 

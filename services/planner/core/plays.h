@@ -18,9 +18,9 @@
 #include "services/planner/core/assignment.h"
 #include "services/planner/core/motion.h"
 #include "services/planner/core/planner.h"
-#include "services/world_model/core/field.h"
-#include "services/world_model/core/game_state.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/team_field.h"
+#include "libs/domain/game_state.h"
+#include "libs/domain/world.h"
 
 namespace ssl::planner {
 

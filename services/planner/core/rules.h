@@ -10,8 +10,8 @@
 #include <optional>
 
 #include "services/planner/core/planner.h"
-#include "services/world_model/core/game_state.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/game_state.h"
+#include "libs/domain/world.h"
 
 namespace ssl::planner {
 

@@ -6,7 +6,7 @@ namespace {
 PlannerConfig planner_config(TeamColor team, const sim::FieldGeometry& field) {
   PlannerConfig config;
   config.team = team;
-  config.default_field = wm::testing::field_size(field);
+  config.default_field = field;
   return config;
 }
 
@@ -16,23 +16,11 @@ wm::WorldModelConfig model_config(TeamColor team) {
   return config;
 }
 
-/// The simulated field in the referee's terms (the same numbers).
-referee::FieldGeometry referee_field(const sim::FieldGeometry& f) {
-  return {.field_length = f.field_length,
-          .field_width = f.field_width,
-          .goal_width = f.goal_width,
-          .goal_depth = f.goal_depth,
-          .defense_area_depth = f.penalty_area_depth,
-          .defense_area_width = f.penalty_area_width,
-          .center_circle_radius = f.center_circle_radius,
-          .penalty_mark_distance = f.goal_center_to_penalty_mark};
-}
-
 std::optional<referee::BuiltinReferee> make_referee(const PlannedMatchOptions& options) {
   if (!options.referee) return std::nullopt;
   const Division division =
       options.field.field_length > sim::FieldGeometry::division_b().field_length ? Division::kA : Division::kB;
-  return referee::BuiltinReferee(*options.referee, referee_field(options.field),
+  return referee::BuiltinReferee(*options.referee, options.field,
                                  {.yellow = {"yellow", 0},
                                   .blue = {"blue", 0},
                                   .division = division,

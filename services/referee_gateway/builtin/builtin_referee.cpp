@@ -7,6 +7,7 @@
 #include <limits>
 #include <set>
 
+#include "libs/geometry/distance.h"
 #include "services/referee_gateway/builtin/commands.h"
 
 namespace ssl::referee {
@@ -105,77 +106,16 @@ bool is_finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y
 
 double sign_of(double value) { return value < 0 ? -1.0 : 1.0; }
 
-/// An axis-aligned defense area and the two ways a robot can be in it.
-struct Area {
-  Vec2 min;
-  Vec2 max;
-
-  /// Distance from `p` to the area's nearest edge when inside (>= 0), negative outside.
-  double depth(const Vec2& p) const {
-    if (p.x() < min.x() || p.x() > max.x() || p.y() < min.y() || p.y() > max.y()) {
-      const double dx = std::max({min.x() - p.x(), 0.0, p.x() - max.x()});
-      const double dy = std::max({min.y() - p.y(), 0.0, p.y() - max.y()});
-      return -std::hypot(dx, dy);
-    }
-    return std::min({p.x() - min.x(), max.x() - p.x(), p.y() - min.y(), max.y() - p.y()});
-  }
-  bool entirely_contains(const Vec2& robot, double robot_radius) const {
-    return depth(robot) >= robot_radius;
-  }
-  bool partly_contains(const Vec2& robot, double robot_radius) const { return depth(robot) > -robot_radius; }
-};
+/// How deep `p` lies inside `area` (>= 0 inside: distance to the nearest edge; negative outside).
+double depth_in(const geom::Rectangle& area, const Vec2& p) { return -geom::signed_distance(p, area); }
+bool entirely_inside(const geom::Rectangle& area, const Vec2& robot, double robot_radius) {
+  return depth_in(area, robot) >= robot_radius;
+}
+bool partly_inside(const geom::Rectangle& area, const Vec2& robot, double robot_radius) {
+  return depth_in(area, robot) > -robot_radius;
+}
 
 }  // namespace
-
-// -------------------------------------------------------------------------------------------------------
-// Field geometry
-
-FieldGeometry FieldGeometry::division_a() {
-  return {.field_length = 12.0,
-          .field_width = 9.0,
-          .goal_width = 1.8,
-          .goal_depth = 0.18,
-          .defense_area_depth = 1.8,
-          .defense_area_width = 3.6,
-          .center_circle_radius = 0.5,
-          .penalty_mark_distance = 8.0};
-}
-
-FieldGeometry FieldGeometry::division_b() {
-  return {.field_length = 9.0,
-          .field_width = 6.0,
-          .goal_width = 1.0,
-          .goal_depth = 0.18,
-          .defense_area_depth = 1.0,
-          .defense_area_width = 2.0,
-          .center_circle_radius = 0.5,
-          .penalty_mark_distance = 6.0};
-}
-
-Status check_field_geometry(const FieldGeometry& field) {
-  const std::pair<const char*, double> lengths[] = {
-      {"field_length", field.field_length},
-      {"field_width", field.field_width},
-      {"goal_width", field.goal_width},
-      {"goal_depth", field.goal_depth},
-      {"defense_area_depth", field.defense_area_depth},
-      {"defense_area_width", field.defense_area_width},
-      {"center_circle_radius", field.center_circle_radius},
-      {"penalty_mark_distance", field.penalty_mark_distance},
-      {"robot_radius", field.robot_radius},
-      {"ball_radius", field.ball_radius},
-  };
-  for (const auto& [name, value] : lengths) {
-    if (!std::isfinite(value) || value <= 0) {
-      return Error{std::string("field geometry: ") + name + " must be a positive number of metres"};
-    }
-  }
-  if (field.goal_width >= field.field_width || field.defense_area_width >= field.field_width ||
-      field.defense_area_depth >= 0.5 * field.field_length) {
-    return Error{"field geometry: the goal or defense area does not fit in the field"};
-  }
-  return Status::success();
-}
 
 // -------------------------------------------------------------------------------------------------------
 // Construction and inputs
@@ -374,7 +314,7 @@ BuiltinReferee::CleanObservation BuiltinReferee::clean(const Observation& observ
 std::optional<BuiltinReferee::Touch> BuiltinReferee::toucher(const CleanObservation& seen, double margin) const {
   if (!seen.ball) return std::nullopt;
   const ObservedRobot* nearest = nullptr;
-  double nearest_distance = field_.robot_radius + field_.ball_radius + margin;
+  double nearest_distance = field_.max_robot_radius + field_.ball_radius + margin;
   for (const ObservedRobot& robot : seen.robots) {
     const double distance = (robot.position - *seen.ball).norm();
     if (distance <= nearest_distance) {
@@ -390,11 +330,8 @@ void BuiltinReferee::update_last_touch(const CleanObservation& seen) {
   if (const std::optional<Touch> touch = toucher(seen, kTouchMargin)) last_touch_ = touch;
 }
 
-std::pair<Vec2, Vec2> BuiltinReferee::defense_area_of(TeamColor defending_team) const {
-  const double goal_x = goal_x_of(defending_team);
-  const double inner_x = goal_x - sign_of(goal_x) * field_.defense_area_depth;
-  const double half_width = 0.5 * field_.defense_area_width;
-  return {{std::min(goal_x, inner_x), -half_width}, {std::max(goal_x, inner_x), half_width}};
+geom::Rectangle BuiltinReferee::defense_area_of(TeamColor defending_team) const {
+  return defense_area(field_, goal_x_of(defending_team));
 }
 
 void BuiltinReferee::track_kick(const CleanObservation& seen) {
@@ -668,7 +605,7 @@ bool BuiltinReferee::robots_ready_for_kickoff(const CleanObservation& seen) cons
   int kickers_in_circle = 0;
   for (const ObservedRobot& robot : seen.robots) {
     const bool own_half = robot.position.x() * sign_of(goal_x_of(robot.team)) >= 0;
-    const bool in_circle = robot.position.norm() < field_.center_circle_radius + field_.robot_radius;
+    const bool in_circle = robot.position.norm() < field_.center_circle_radius + field_.max_robot_radius;
     if (!own_half && !(in_circle && robot.team == kicking)) return false;
     if (in_circle && (robot.team != kicking || ++kickers_in_circle > 1)) return false;
   }
@@ -958,14 +895,11 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_defense_areas(co
                                                                               Timestamp now) {
   const DefenseAreaRule& rule = profile_.rules.defense_area;
   if (!rule.enabled) return std::nullopt;
-  const double radius = field_.robot_radius;
-  const auto area_of = [this](TeamColor defending_team) {
-    const auto [min, max] = defense_area_of(defending_team);
-    return Area{min, max};
-  };
+  const double radius = field_.max_robot_radius;
+  const auto area_of = [this](TeamColor defending_team) { return defense_area_of(defending_team); };
 
   for (const TeamColor team : {TeamColor::kYellow, TeamColor::kBlue}) {
-    const Area own_area = area_of(team);
+    const geom::Rectangle own_area = area_of(team);
     const std::uint32_t goalkeeper = team_info(team).goalkeeper;
     std::uint32_t inside = 0;
     const ObservedRobot* offender = nullptr;
@@ -974,13 +908,13 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_defense_areas(co
       const bool a_keeper = a.id == goalkeeper;
       const bool b_keeper = b.id == goalkeeper;
       if (a_keeper != b_keeper) return b_keeper;
-      const double a_depth = own_area.depth(a.position);
-      const double b_depth = own_area.depth(b.position);
+      const double a_depth = depth_in(own_area, a.position);
+      const double b_depth = depth_in(own_area, b.position);
       if (a_depth != b_depth) return a_depth > b_depth;
       return a.id < b.id;
     };
     for (const ObservedRobot& robot : seen.robots) {
-      if (robot.team != team || !own_area.entirely_contains(robot.position, radius)) continue;
+      if (robot.team != team || !entirely_inside(own_area, robot.position, radius)) continue;
       ++inside;
       if (offender == nullptr || worse(robot, *offender)) offender = &robot;
     }
@@ -989,7 +923,7 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_defense_areas(co
              .by_team = to_team(team),
              .by_bot = offender->id,
              .location = offender->position,
-             .value = own_area.depth(offender->position)},
+             .value = depth_in(own_area, offender->position)},
             now, /*is_foul=*/false);
       const TeamColor kicker = opponent(team);
       return Transition{.command = penalty(kicker),
@@ -1000,17 +934,17 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_defense_areas(co
   }
 
   if (!rule.attacker_infringement) return std::nullopt;
-  const double reach = field_.robot_radius + field_.ball_radius + kTouchMargin;
+  const double reach = field_.max_robot_radius + field_.ball_radius + kTouchMargin;
   for (const TeamColor team : {TeamColor::kYellow, TeamColor::kBlue}) {
     const TeamColor defending = opponent(team);
-    const Area their_area = area_of(defending);
+    const geom::Rectangle their_area = area_of(defending);
     for (const ObservedRobot& robot : seen.robots) {
       if (robot.team != team) continue;
       const bool touches_ball = seen.ball && (robot.position - *seen.ball).norm() <= reach;
       std::optional<GameEventType> offence;
-      if (touches_ball && their_area.partly_contains(robot.position, radius)) {
+      if (touches_ball && partly_inside(their_area, robot.position, radius)) {
         offence = GameEventType::kAttackerTouchedBallInDefenseArea;
-      } else if (their_area.entirely_contains(robot.position, radius)) {
+      } else if (entirely_inside(their_area, robot.position, radius)) {
         offence = GameEventType::kAttackerTooCloseToDefenseArea;
       }
       if (!offence) continue;
@@ -1018,7 +952,7 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_defense_areas(co
              .by_team = to_team(team),
              .by_bot = robot.id,
              .location = robot.position,
-             .value = their_area.depth(robot.position) + radius},
+             .value = depth_in(their_area, robot.position) + radius},
             now, /*is_foul=*/true);
       return Transition{.command = Command::kStop,
                         .next_command = direct_free(defending),
@@ -1039,7 +973,7 @@ void BuiltinReferee::judge_keep_out(const CleanObservation& seen, Timestamp now)
   const time::Duration persistence = duration_from_seconds(rule.violation_persistence);
   for (const ObservedRobot& robot : seen.robots) {
     if (!both_teams && robot.team == executing) continue;
-    const double distance = (robot.position - *seen.ball).norm() - field_.robot_radius;
+    const double distance = (robot.position - *seen.ball).norm() - field_.max_robot_radius;
     const auto key = std::pair{robot.team, robot.id};
     if (distance >= rule.radius) {
       keep_out_since_.erase(key);
@@ -1084,7 +1018,7 @@ double BuiltinReferee::goal_x_of(TeamColor defending_team) const {
 
 Vec2 BuiltinReferee::penalty_mark_against(TeamColor defending_team) const {
   const double goal_x = goal_x_of(defending_team);
-  return {goal_x - sign_of(goal_x) * field_.penalty_mark_distance, 0};
+  return {goal_x - sign_of(goal_x) * field_.goal_center_to_penalty_mark, 0};
 }
 
 TeamColor BuiltinReferee::defender_of_goal_at(double x) const {

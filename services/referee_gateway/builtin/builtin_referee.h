@@ -109,7 +109,8 @@
 #include <utility>
 #include <vector>
 
-#include "libs/common/division.h"
+#include "libs/domain/division.h"
+#include "libs/domain/field.h"
 #include "libs/common/result.h"
 #include "libs/common/team.h"
 #include "libs/geometry/vec2.h"
@@ -118,27 +119,6 @@
 #include "services/referee_gateway/core/types.h"
 
 namespace ssl::referee {
-
-/// The field as the division defines it (the rules' numbers; venues may differ, so an adapter may fill it
-/// from vision geometry). Metres; lengths along x (goal to goal), widths along y.
-struct FieldGeometry {
-  double field_length = 0;  // goal line to goal line
-  double field_width = 0;   // touch line to touch line
-  double goal_width = 0;    // inner, between the posts
-  double goal_depth = 0;
-  double defense_area_depth = 0;  // along x, from the goal line
-  double defense_area_width = 0;  // along y, centred on the goal
-  double center_circle_radius = 0;
-  double penalty_mark_distance = 0;  // from the centre of the goal the penalty is shot at
-  double robot_radius = 0.09;
-  double ball_radius = 0.0215;
-
-  static FieldGeometry division_a();  // 12 x 9 m, goal 1.8 m, defense area 3.6 x 1.8 m
-  static FieldGeometry division_b();  // 9 x 6 m, goal 1.0 m, defense area 2 x 1 m
-};
-
-/// Ok when every length is finite and positive and the areas fit in the field. The referee assumes it.
-Status check_field_geometry(const FieldGeometry& field);
 
 struct TeamSetup {
   std::string name;
@@ -258,8 +238,8 @@ class BuiltinReferee {
   CleanObservation clean(const Observation& observation, time::Timestamp now);
   /// The robot touching the ball now: the nearest with centres within robot + ball radius + `margin`.
   std::optional<Touch> toucher(const CleanObservation& observation, double margin) const;
-  /// A team's own defense area (min, max corners), SSL-Vision frame.
-  std::pair<geom::Vec2, geom::Vec2> defense_area_of(TeamColor defending_team) const;
+  /// A team's own defense area, SSL-Vision frame.
+  geom::Rectangle defense_area_of(TeamColor defending_team) const;
   void track_kick(const CleanObservation& observation);
   void update_last_touch(const CleanObservation& observation);
 

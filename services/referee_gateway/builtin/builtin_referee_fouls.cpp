@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libs/geometry/distance.h"
 #include "services/referee_gateway/builtin/builtin_referee.h"
 #include "services/referee_gateway/builtin/commands.h"
 
@@ -17,20 +18,6 @@ using builtin::to_team;
 using geom::Vec2;
 using time::duration_from_seconds;
 using time::Timestamp;
-
-double distance_to_segment(const Vec2& point, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (point - (a + t * ab)).norm();
-}
-
-/// Distance from `p` to an axis-aligned rectangle (0 inside).
-double distance_to_box(const Vec2& p, const Vec2& min, const Vec2& max) {
-  const double dx = std::max({min.x() - p.x(), 0.0, p.x() - max.x()});
-  const double dy = std::max({min.y() - p.y(), 0.0, p.y() - max.y()});
-  return std::hypot(dx, dy);
-}
 
 }  // namespace
 
@@ -99,8 +86,8 @@ Vec2 BuiltinReferee::legal_free_kick_spot(const Vec2& p) const {
   const double inset = profile_.rules.out_of_bounds.line_distance;
   Vec2 spot(std::clamp(p.x(), -(half_length - inset), half_length - inset),
             std::clamp(p.y(), -(half_width - inset), half_width - inset));
-  const double clear_x = half_length - field_.defense_area_depth - kRestartDefenseAreaDistance;
-  const double clear_y = 0.5 * field_.defense_area_width + kRestartDefenseAreaDistance;
+  const double clear_x = half_length - field_.penalty_area_depth - kRestartDefenseAreaDistance;
+  const double clear_y = 0.5 * field_.penalty_area_width + kRestartDefenseAreaDistance;
   if (std::abs(spot.x()) > clear_x && std::abs(spot.y()) < clear_y) {
     // In front of a goal: out of the area's reach along x or along y, whichever is nearer.
     const Vec2 along_x((spot.x() < 0 ? -1 : 1) * clear_x, spot.y());
@@ -144,7 +131,7 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_running_fouls(co
 void BuiltinReferee::judge_crashes(const CleanObservation& seen, Timestamp now) {
   const CrashRule& rule = profile_.rules.crash;
   if (!rule.enabled) return;
-  const double contact = 2 * field_.robot_radius + kCrashContactMargin;
+  const double contact = 2 * field_.max_robot_radius + kCrashContactMargin;
   for (const ObservedRobot& yellow : seen.robots) {
     if (yellow.team != TeamColor::kYellow) continue;
     for (const ObservedRobot& blue : seen.robots) {
@@ -263,8 +250,7 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_keeper_held_ball
   if (!rule.enabled || !seen.ball) return std::nullopt;
   std::optional<TeamColor> defending;
   for (const TeamColor team : {TeamColor::kYellow, TeamColor::kBlue}) {
-    const auto [min, max] = defense_area_of(team);
-    if (distance_to_box(*seen.ball, min, max) == 0) defending = team;
+    if (defense_area_of(team).contains(*seen.ball)) defending = team;
   }
   if (!defending) {
     ball_in_own_area_since_.reset();
@@ -345,8 +331,8 @@ void BuiltinReferee::judge_defense_area_distance(const CleanObservation& seen, T
   if (!rule.enabled) return;
   const time::Duration persistence = duration_from_seconds(rule.violation_persistence);
   for (const ObservedRobot& robot : seen.robots) {
-    const auto [min, max] = defense_area_of(opponent(robot.team));
-    const double distance = distance_to_box(robot.position, min, max) - field_.robot_radius;
+    const double distance = geom::distance(robot.position, defense_area_of(opponent(robot.team))) -
+                            field_.max_robot_radius;
     const auto key = std::pair{robot.team, robot.id};
     if (distance >= rule.distance) {
       area_distance_since_.erase(key);
@@ -372,7 +358,8 @@ void BuiltinReferee::judge_placement_interference(const CleanObservation& seen, 
   for (const ObservedRobot& robot : seen.robots) {
     if (robot.team == *executing_team_) continue;
     const double distance =
-        distance_to_segment(robot.position, *seen.ball, *state_.designated_position) - field_.robot_radius;
+        geom::distance(robot.position, geom::Segment{*seen.ball, *state_.designated_position}) -
+        field_.max_robot_radius;
     const auto key = std::pair{robot.team, robot.id};
     if (distance >= rule.radius) {
       interference_since_.erase(key);

@@ -25,7 +25,7 @@
 #include <string>
 #include <string_view>
 
-#include "libs/common/division.h"
+#include "libs/domain/division.h"
 #include "libs/common/result.h"
 #include "libs/common/team.h"
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "libs/common/team.h"
+#include "libs/domain/field.h"
 #include "libs/geometry/vec2.h"
 #include "libs/time/time.h"
 
@@ -28,36 +29,8 @@ struct RobotKey {
 
 inline constexpr std::uint32_t kMaxRobotsPerTeam = 16;
 
-/// Field dimensions, metres (rule numbers in shared/reference/ssl-protocols.md section 13.1).
-struct FieldGeometry {
-  double field_length = 12.0;             // between goal lines
-  double field_width = 9.0;               // between touch lines
-  double goal_width = 1.8;                // inner, between the side walls
-  double goal_depth = 0.18;
-  double goal_height = 0.16;
-  double goal_wall_thickness = 0.02;
-  double boundary_width = 0.3;            // touch line to wall
-  double boundary_width_goal_line = 0.6;  // goal line to wall
-  double penalty_area_depth = 1.8;
-  double penalty_area_width = 3.6;
-  double center_circle_radius = 0.5;
-  double line_thickness = 0.01;
-  double goal_center_to_penalty_mark = 8.0;
-  double goal_substitution_area_width = 0.3;
-
-  static FieldGeometry division_a() { return {}; }
-  static FieldGeometry division_b() {
-    FieldGeometry field;
-    field.field_length = 9.0;
-    field.field_width = 6.0;
-    field.goal_width = 1.0;
-    field.boundary_width_goal_line = 0.3;
-    field.penalty_area_depth = 1.0;
-    field.penalty_area_width = 2.0;
-    field.goal_center_to_penalty_mark = 6.0;
-    return field;
-  }
-};
+/// Field dimensions, metres: the shared vocabulary's (libs/domain/field.h).
+using ssl::FieldGeometry;
 
 /// Acceleration and speed limits of a robot's motion controller.
 struct RobotLimits {

@@ -4,6 +4,8 @@
 #include <tuple>
 #include <utility>
 
+#include "libs/domain/field.h"
+
 namespace ssl::vision_gateway {
 namespace {
 
@@ -13,32 +15,22 @@ constexpr double kDivisionALengthThreshold = 10.5;
 }  // namespace
 
 OptionalFieldDefaults rulebook_defaults(Division division) {
-  OptionalFieldDefaults d;
-  d.center_circle_radius = 0.5;
-  d.line_thickness = 0.01;
-  d.goal_height = 0.16;
-  d.ball_radius = 0.0215;
-  d.max_robot_radius = 0.09;
-  d.goal_substitution_area_width = 0.3;
-  if (division == Division::kA) {
-    d.boundary_width_goal_line = 0.6;
-    d.penalty_area_depth = 1.8;
-    d.penalty_area_width = 3.6;
-    d.goal_center_to_penalty_mark = 8.0;
-  } else {
-    d.boundary_width_goal_line = 0.3;
-    d.penalty_area_depth = 1.0;
-    d.penalty_area_width = 2.0;
-    d.goal_center_to_penalty_mark = 6.0;
-  }
-  return d;
+  const ssl::FieldGeometry rules = ssl::FieldGeometry::of(division);
+  return {.boundary_width_goal_line = rules.boundary_width_goal_line,
+          .penalty_area_depth = rules.penalty_area_depth,
+          .penalty_area_width = rules.penalty_area_width,
+          .center_circle_radius = rules.center_circle_radius,
+          .line_thickness = rules.line_thickness,
+          .goal_center_to_penalty_mark = rules.goal_center_to_penalty_mark,
+          .goal_height = rules.goal_height,
+          .ball_radius = rules.ball_radius,
+          .max_robot_radius = rules.max_robot_radius,
+          .goal_substitution_area_width = rules.goal_substitution_area_width};
 }
 
 Division detect_division(const FieldSizeInput& field) {
   return field.field_length >= kDivisionALengthThreshold ? Division::kA : Division::kB;
 }
-
-std::string_view to_string(Division division) { return division == Division::kA ? "a" : "b"; }
 
 FieldGeometry resolve_geometry(const GeometryInput& input, DivisionChoice choice) {
   FieldGeometry out;

@@ -1,9 +1,8 @@
 // Rulebook defaults for the optional SSL_GeometryFieldSize fields, per division, and the resolution of a
 // received field size into one where every value is present.
 //
-// Values (metres) are those of the current rulebook (ssl-rules chapters/playingenvironment.adoc, see
-// shared/reference/ssl-protocols.md section 13.1) and, for values the rulebook does not fix (goal
-// substitution area width), ssl-vision's default constants:
+// Values (metres) are the shared field geometry's by division (libs/domain/field.h: the current rulebook,
+// shared/reference/ssl-protocols.md section 13.1, and ssl-vision's constants where the rulebook is silent):
 //
 //   field                          Div A    Div B
 //   boundary_width_goal_line       0.6      0.3     (ssl-vision sends 0.6 for B too; the rules say 0.3)
@@ -53,9 +52,6 @@ OptionalFieldDefaults rulebook_defaults(Division division);
 
 /// Division A when the field is at least 10.5 m long, else Division B.
 Division detect_division(const FieldSizeInput& field);
-
-/// "a" or "b".
-std::string_view to_string(Division division);
 
 /// Fills every optional field the source left out from the chosen division's defaults, and lists the
 /// filled ones (by their league field names, in field-number order) in `defaulted_fields`. Lines, arcs,

@@ -24,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "libs/domain/division.h"
 #include "libs/geometry/vec2.h"
 #include "libs/time/time.h"
 
@@ -230,9 +231,6 @@ struct GeometryInput {
 
   friend bool operator==(const GeometryInput&, const GeometryInput&) = default;
 };
-
-/// The league's two divisions, whose rulebook dimensions fill geometry fields the source did not send.
-enum class Division : std::uint8_t { kA, kB };
 
 /// Geometry as published: every field resolved.
 struct FieldGeometry {

@@ -11,7 +11,7 @@
 #include "idl/robot.h"
 #include "idl/vision.h"
 #include "idl/world.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/world.h"
 
 namespace ssl::wm {
 

@@ -30,7 +30,7 @@
 #include <optional>
 
 #include "services/world_model/core/kalman_filter.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/world.h"
 
 namespace ssl::wm {
 

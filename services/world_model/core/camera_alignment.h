@@ -51,7 +51,7 @@
 #include <Eigen/Core>
 
 #include "libs/common/team.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/world.h"
 
 namespace ssl::wm {
 

@@ -83,7 +83,7 @@
 
 #include <Eigen/Core>
 
-#include "services/world_model/core/types.h"
+#include "libs/domain/world.h"
 
 namespace ssl::wm {
 

@@ -36,7 +36,7 @@
 #include <vector>
 
 #include "services/world_model/core/kalman_filter.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/world.h"
 
 namespace ssl::wm {
 

@@ -38,18 +38,9 @@ inline DetectionFrame from_sim(const sim::DetectionFrame& in) {
   return out;
 }
 
-/// The simulator's field as the world model's FieldSize (ball and robot radius left at their defaults).
-inline FieldSize field_size(const sim::FieldGeometry& f) {
-  return {.field_length = f.field_length, .field_width = f.field_width, .goal_width = f.goal_width,
-          .goal_depth = f.goal_depth, .boundary_width = f.boundary_width,
-          .penalty_area_depth = f.penalty_area_depth, .penalty_area_width = f.penalty_area_width,
-          .center_circle_radius = f.center_circle_radius,
-          .goal_center_to_penalty_mark = f.goal_center_to_penalty_mark};
-}
-
 inline Geometry from_sim(const sim::GeometryData& in) {
   Geometry out;
-  out.field = field_size(in.field);
+  out.field = in.field;
   out.field.ball_radius = in.ball_radius;
   out.field.max_robot_radius = in.max_robot_radius;
   for (const auto& c : in.calibrations) out.cameras.push_back({c.camera_id, c.derived_world});

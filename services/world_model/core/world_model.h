@@ -27,11 +27,11 @@
 #include "services/world_model/core/ball_filter.h"
 #include "services/world_model/core/camera_alignment.h"
 #include "services/world_model/core/chip_estimator.h"
-#include "services/world_model/core/field.h"
-#include "services/world_model/core/game_state.h"
+#include "libs/domain/team_field.h"
+#include "libs/domain/game_state.h"
 #include "services/world_model/core/robot_filter.h"
-#include "services/world_model/core/team_frame.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/team_frame.h"
+#include "libs/domain/world.h"
 
 namespace ssl::wm {
 

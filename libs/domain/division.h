@@ -1,5 +1,5 @@
 // The league's two divisions, and the rule numbers that depend only on the division. One enum for every
-// service (config files spell it "a" / "b").
+// service (config files spell it "a" / "b"; field dimensions by division: field.h).
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "services/world_model/core/game_state.h"
+#include "libs/domain/game_state.h"
 
 #include <gtest/gtest.h>
 

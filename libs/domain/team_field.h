@@ -1,5 +1,5 @@
-// Field: the playing field's dimensions and its named points and areas in the TEAM frame (our goal at
-// negative x, see team_frame.h), for the world model and for the planner. Metres. The field is symmetric
+// Field: the playing field's dimensions (FieldGeometry, field.h) and its named points and areas in the TEAM
+// frame (our goal at negative x, see team_frame.h), for the world model and for the planner. Metres. The field is symmetric
 // under the team flip, so these depend only on the dimensions (from vision.geometry).
 //
 //   Field field(geometry.field);
@@ -10,7 +10,7 @@
 #include <array>
 #include <cmath>
 
-#include "services/world_model/core/types.h"
+#include "libs/domain/world.h"
 
 namespace ssl::wm {
 

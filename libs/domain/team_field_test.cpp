@@ -1,4 +1,4 @@
-#include "services/world_model/core/field.h"
+#include "libs/domain/team_field.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,6 @@
-// Domain types of the world model core: what goes in (detections, geometry, referee, robot feedback and
-// the commands we sent) and what comes out (WorldState). SI units (m, m/s, rad, rad/s, s).
+// The world types of the shared domain vocabulary (namespace ssl::wm): what world_model takes in
+// (detections, geometry, referee, robot feedback and the commands we sent) and what it publishes and the
+// planner consumes (WorldState, with its team frame). SI units (m, m/s, rad, rad/s, s).
 //
 // Frames. INPUTS are in the SSL-Vision global frame (origin at the field centre, x along the length,
 // angles CCW from +x), except robot commands, which are in each robot's local frame (forward, left, CCW).
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "libs/common/team.h"
+#include "libs/domain/field.h"
 #include "libs/geometry/vec2.h"
 #include "libs/time/time.h"
 
@@ -54,20 +56,8 @@ struct DetectionFrame {
   std::vector<RobotDetection> robots_blue;
 };
 
-/// Field dimensions, metres (SSL_GeometryFieldSize).
-struct FieldSize {
-  double field_length = 12.0;
-  double field_width = 9.0;
-  double goal_width = 1.8;
-  double goal_depth = 0.18;
-  double boundary_width = 0.3;
-  double penalty_area_depth = 1.8;
-  double penalty_area_width = 3.6;
-  double center_circle_radius = 0.5;
-  double goal_center_to_penalty_mark = 8.0;
-  double ball_radius = 0.0215;
-  double max_robot_radius = 0.09;
-};
+/// Field dimensions, metres (SSL_GeometryFieldSize): the shared vocabulary's (libs/domain/field.h).
+using FieldSize = ssl::FieldGeometry;
 
 struct CameraInfo {
   std::uint32_t camera_id = 0;

@@ -16,8 +16,8 @@
 #include <optional>
 
 #include "libs/common/team.h"
-#include "services/world_model/core/team_frame.h"
-#include "services/world_model/core/types.h"
+#include "libs/domain/team_frame.h"
+#include "libs/domain/world.h"
 
 namespace ssl::wm {
 
