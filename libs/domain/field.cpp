@@ -1,5 +1,7 @@
 #include "libs/domain/field.h"
 
+#include "libs/domain/keep_out.h"
+
 #include <cmath>
 #include <string>
 #include <utility>
@@ -11,6 +13,14 @@ geom::Rectangle defense_area(const FieldGeometry& field, double goal_x_sign) {
   const double inner_x = goal_x - (goal_x < 0 ? -1.0 : 1.0) * field.penalty_area_depth;
   const double half_width = 0.5 * field.penalty_area_width;
   return {{goal_x, -half_width}, {inner_x, half_width}};
+}
+
+geom::Rectangle defense_area_keep_out(const FieldGeometry& field, double goal_x_sign, double margin,
+                                      double behind) {
+  const double sign = goal_x_sign < 0 ? -1.0 : 1.0;
+  const double goal_x = sign * field.half_length();
+  const double half_width = 0.5 * field.penalty_area_width + margin;
+  return {{goal_x + sign * behind, -half_width}, {goal_x - sign * (field.penalty_area_depth + margin), half_width}};
 }
 
 Status check_field_geometry(const FieldGeometry& field) {

@@ -15,6 +15,8 @@ void GameState::update(const RefereeInfo& referee, const TeamFrame& frame, const
   if (ball) last_ball_ = *ball;
   our_goalkeeper_ = us_ == TeamColor::kBlue ? referee.blue_goalkeeper : referee.yellow_goalkeeper;
   their_goalkeeper_ = us_ == TeamColor::kBlue ? referee.yellow_goalkeeper : referee.blue_goalkeeper;
+  we_can_place_ball_ = us_ == TeamColor::kBlue ? referee.blue_can_place_ball : referee.yellow_can_place_ball;
+  our_max_allowed_bots_ = us_ == TeamColor::kBlue ? referee.blue_max_allowed_bots : referee.yellow_max_allowed_bots;
   placement_team_.reset();
   if (referee.designated_position) placement_team_ = frame.point(*referee.designated_position);
   const bool is_new = !command_counter_ || *command_counter_ != referee.command_counter ||

@@ -74,6 +74,9 @@ class GameState {
   std::optional<Vec2> ball_placement_position() const { return placement_team_; }
   std::uint32_t our_goalkeeper() const { return our_goalkeeper_; }
   std::uint32_t their_goalkeeper() const { return their_goalkeeper_; }
+  /// Whether OUR team may still place the ball, and how many robots it may have on the field.
+  bool we_can_place_ball() const { return we_can_place_ball_; }
+  std::uint32_t our_max_allowed_bots() const { return our_max_allowed_bots_; }
 
  private:
   void set_restart(Restart restart, TeamColor team, bool ready);
@@ -91,6 +94,8 @@ class GameState {
   std::optional<Vec2> placement_team_;
   std::uint32_t our_goalkeeper_ = 0;
   std::uint32_t their_goalkeeper_ = 0;
+  bool we_can_place_ball_ = true;
+  std::uint32_t our_max_allowed_bots_ = 11;
 };
 
 }  // namespace ssl::wm

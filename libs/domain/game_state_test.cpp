@@ -109,5 +109,18 @@ TEST(WorldModelGameState, BallPlacementPositionIsInTheTeamFrame) {
   EXPECT_EQ(*f.game.ball_placement_position(), Vec2(-2.0, -1.0));
 }
 
+TEST(WorldModelGameState, OurPlacementRightAndRobotLimitAreOurTeamsOnly) {
+  RefereeInfo referee;
+  referee.yellow_can_place_ball = false;
+  referee.yellow_max_allowed_bots = 5;
+  referee.blue_max_allowed_bots = 6;
+  for (TeamColor us : {TeamColor::kBlue, TeamColor::kYellow}) {
+    GameState game(us);
+    game.update(referee, TeamFrame(), std::nullopt);
+    EXPECT_EQ(game.we_can_place_ball(), us == TeamColor::kBlue) << to_string(us);
+    EXPECT_EQ(game.our_max_allowed_bots(), us == TeamColor::kBlue ? 6u : 5u) << to_string(us);
+  }
+}
+
 }  // namespace
 }  // namespace ssl::wm

@@ -99,7 +99,8 @@ enum class RefereeCommand {
   kBallPlacementBlue,
 };
 
-/// The part of the referee state the world model uses.
+/// The part of referee.state that world_model and the planner use (both teams; GameState takes one team's
+/// view of it). Converted from the IDL in ONE place: libs/domain/idl_convert.h.
 struct RefereeInfo {
   RefereeCommand command = RefereeCommand::kHalt;
   std::uint32_t command_counter = 0;
@@ -108,6 +109,10 @@ struct RefereeInfo {
   std::optional<RefereeCommand> next_command;
   std::uint32_t yellow_goalkeeper = 0;
   std::uint32_t blue_goalkeeper = 0;
+  bool yellow_can_place_ball = true;  // TeamInfo.can_place_ball (false after too many failed placements)
+  bool blue_can_place_ball = true;
+  std::uint32_t yellow_max_allowed_bots = 11;  // TeamInfo.max_allowed_bots (lowered by cards)
+  std::uint32_t blue_max_allowed_bots = 11;
 };
 
 /// robot.feedback of one of OUR robots.

@@ -22,17 +22,17 @@ Fields<PlannerConfig> core_fields() {
   return Fields<PlannerConfig>{
       nested("limits", &PlannerConfig::limits, limit_fields()),
       field("robot_radius", &PlannerConfig::robot_radius).unit("m").range(0.05, 0.2),
-      field("stop_speed", &PlannerConfig::stop_speed).unit("m/s").range(0.1, 1.5)
-          .doc("rules: at most 1.5 m/s during STOP"),
+      field("stop_speed", &PlannerConfig::stop_speed).unit("m/s").range(0.1, rules::kStopMaxSpeed)
+          .doc("the rules' limit during STOP or below"),
       field("stop_speed_margin", &PlannerConfig::stop_speed_margin).unit("m/s").range(0, 1)
           .doc("how far below stop_speed we aim"),
-      field("ball_keep_away", &PlannerConfig::ball_keep_away).unit("m").range(0.5, 2)
-          .doc("rules: distance to the ball during STOP and their restarts"),
+      field("ball_keep_away", &PlannerConfig::ball_keep_away).unit("m").range(rules::kStopBallDistance, 2)
+          .doc("the rules' distance (or more) to the ball during STOP and their restarts"),
       field("keep_away_margin", &PlannerConfig::keep_away_margin).unit("m").range(0, 1),
-      field("defense_area_keep_away", &PlannerConfig::defense_area_keep_away).unit("m").range(0.2, 1)
-          .doc("rules: distance to the opponent defense area during STOP"),
-      field("placement_tolerance", &PlannerConfig::placement_tolerance).unit("m").range(0.01, 0.15)
-          .doc("rules: ball placement success radius"),
+      field("defense_area_keep_away", &PlannerConfig::defense_area_keep_away).unit("m").range(rules::kAttackerDefenseAreaDistance, 1)
+          .doc("the rules' distance (or more) to the opponent defense area during STOP"),
+      field("placement_tolerance", &PlannerConfig::placement_tolerance).unit("m").range(0.01, rules::kPlacementTolerance)
+          .doc("ball placement success radius: the rules' or tighter"),
       field("penalty_line_behind", &PlannerConfig::penalty_line_behind).unit("m").range(0.4, 3)
           .doc("rules: other robots at least this far behind the ball at a penalty"),
   }

@@ -156,9 +156,9 @@ class LockstepMatch {
       planner_config.default_field = field_;
       t.planner.emplace(planner_config);
     }
-    referee_.info.blue_team_on_positive_half = side.blue_on_positive_half;
-    referee_.info.blue_goalkeeper = 0;
-    referee_.info.yellow_goalkeeper = 0;
+    referee_.blue_team_on_positive_half = side.blue_on_positive_half;
+    referee_.blue_goalkeeper = 0;
+    referee_.yellow_goalkeeper = 0;
     set_command(RefereeCommand::kHalt, std::nullopt, std::nullopt);
   }
 
@@ -260,15 +260,15 @@ class LockstepMatch {
 
   void set_command(RefereeCommand command, std::optional<RefereeCommand> next,
                    std::optional<Vec2> designated) {
-    ++referee_.info.command_counter;
-    referee_.info.command = command;
-    referee_.info.next_command = next;
-    referee_.info.designated_position.reset();
-    if (designated) referee_.info.designated_position = us_frame_.to_vision_point(*designated);
+    ++referee_.command_counter;
+    referee_.command = command;
+    referee_.next_command = next;
+    referee_.designated_position.reset();
+    if (designated) referee_.designated_position = us_frame_.to_vision_point(*designated);
   }
 
   void step_team(Team& t, time::Timestamp now) {
-    t.model->on_referee(referee_.info, now);
+    t.model->on_referee(referee_, now);
     PlannerInputs inputs{.world = t.model->state(now), .referee = referee_, .field = t.model->field().size()};
     t.planner->step(inputs, now, t.out);
     // Robots the planner did not command (not visible) stop, as robot_link does with stale commands.
@@ -336,7 +336,7 @@ class LockstepMatch {
   sim::Simulator sim_;
   Team blue_;
   Team yellow_;
-  RefereeInput referee_;
+  wm::RefereeInfo referee_;
   std::vector<RefereeEvent> script_;
   std::size_t next_event_ = 0;
   std::int64_t ticks_ = 0;

@@ -49,7 +49,6 @@ std::optional<TeamColor> team_from_idl(idl::common::TeamColor team) {
   }
 }
 
-bool positive(double v) { return std::isfinite(v) && v > 0; }
 
 }  // namespace
 
@@ -100,95 +99,13 @@ Result<wm::WorldState> from_idl(const idl::world::WorldState& in) {
   return out;
 }
 
-std::optional<wm::RefereeCommand> command_from_idl(idl::referee::Command command) {
-  using C = wm::RefereeCommand;
-  namespace r = idl::referee;
-  switch (command) {
-    case r::COMMAND_HALT: return C::kHalt;
-    case r::COMMAND_STOP: return C::kStop;
-    case r::COMMAND_NORMAL_START: return C::kNormalStart;
-    case r::COMMAND_FORCE_START: return C::kForceStart;
-    case r::COMMAND_PREPARE_KICKOFF_YELLOW: return C::kPrepareKickoffYellow;
-    case r::COMMAND_PREPARE_KICKOFF_BLUE: return C::kPrepareKickoffBlue;
-    case r::COMMAND_PREPARE_PENALTY_YELLOW: return C::kPreparePenaltyYellow;
-    case r::COMMAND_PREPARE_PENALTY_BLUE: return C::kPreparePenaltyBlue;
-    case r::COMMAND_DIRECT_FREE_YELLOW: return C::kDirectFreeYellow;
-    case r::COMMAND_DIRECT_FREE_BLUE: return C::kDirectFreeBlue;
-    case r::COMMAND_INDIRECT_FREE_YELLOW: return C::kIndirectFreeYellow;
-    case r::COMMAND_INDIRECT_FREE_BLUE: return C::kIndirectFreeBlue;
-    case r::COMMAND_TIMEOUT_YELLOW: return C::kTimeoutYellow;
-    case r::COMMAND_TIMEOUT_BLUE: return C::kTimeoutBlue;
-    case r::COMMAND_GOAL_YELLOW: return C::kGoalYellow;
-    case r::COMMAND_GOAL_BLUE: return C::kGoalBlue;
-    case r::COMMAND_BALL_PLACEMENT_YELLOW: return C::kBallPlacementYellow;
-    case r::COMMAND_BALL_PLACEMENT_BLUE: return C::kBallPlacementBlue;
-  }
-  return std::nullopt;
+Result<wm::RefereeInfo> from_idl(const idl::referee::RefereeState& in) {
+  Result<wm::RefereeInfo> info = referee_info_from_idl(in);
+  if (info) info->blue_team_on_positive_half.reset();
+  return info;
 }
 
-Result<RefereeInput> from_idl(const idl::referee::RefereeState& in, TeamColor our_team) {
-  RefereeInput out;
-  const auto command = command_from_idl(in.command());
-  if (!command) return Error{"referee.state command has an unknown value " + std::to_string(in.command())};
-  out.info.command = *command;
-  out.info.command_counter = in.command_counter();
-  if (in.has_designated_position()) {
-    const auto& p = in.designated_position();
-    if (!finite({p.x(), p.y()})) return not_finite("referee.state designated_position");
-    out.info.designated_position = wm::Vec2(p.x(), p.y());
-  }
-  if (in.has_next_command()) {
-    const auto next = command_from_idl(in.next_command());
-    if (!next) return Error{"referee.state next_command has an unknown value " + std::to_string(in.next_command())};
-    out.info.next_command = *next;
-  }
-  out.info.yellow_goalkeeper = in.yellow().goalkeeper();
-  out.info.blue_goalkeeper = in.blue().goalkeeper();
-  const auto& ours = our_team == TeamColor::kBlue ? in.blue() : in.yellow();
-  out.our_can_place_ball = ours.can_place_ball();
-  out.our_max_allowed_bots = ours.max_allowed_bots();
-  return out;
-}
-
-Result<wm::FieldSize> from_idl(const idl::vision::Geometry& in) {
-  const auto& f = in.field();
-  const std::pair<const char*, double> required[] = {
-      {"field_length", f.field_length()},
-      {"field_width", f.field_width()},
-      {"goal_width", f.goal_width()},
-      {"goal_depth", f.goal_depth()},
-      {"penalty_area_depth", f.penalty_area_depth()},
-      {"penalty_area_width", f.penalty_area_width()},
-      {"center_circle_radius", f.center_circle_radius()},
-      {"goal_center_to_penalty_mark", f.goal_center_to_penalty_mark()},
-  };
-  for (const auto& [name, value] : required) {
-    if (!positive(value)) {
-      return Error{std::string("vision.geometry field.") + name + " = " + std::to_string(value) +
-                   " is not a positive finite length"};
-    }
-  }
-  const std::pair<const char*, double> optional[] = {{"boundary_width", f.boundary_width()},
-                                                     {"ball_radius", f.ball_radius()},
-                                                     {"max_robot_radius", f.max_robot_radius()}};
-  for (const auto& [name, value] : optional) {
-    if (!std::isfinite(value) || value < 0) {
-      return Error{std::string("vision.geometry field.") + name + " = " + std::to_string(value) +
-                   " is not a finite non-negative length"};
-    }
-  }
-  return wm::FieldSize{.field_length = f.field_length(),
-                       .field_width = f.field_width(),
-                       .goal_width = f.goal_width(),
-                       .goal_depth = f.goal_depth(),
-                       .boundary_width = f.boundary_width(),
-                       .penalty_area_depth = f.penalty_area_depth(),
-                       .penalty_area_width = f.penalty_area_width(),
-                       .center_circle_radius = f.center_circle_radius(),
-                       .goal_center_to_penalty_mark = f.goal_center_to_penalty_mark(),
-                       .ball_radius = f.ball_radius() > 0 ? f.ball_radius() : 0.0215,
-                       .max_robot_radius = f.max_robot_radius() > 0 ? f.max_robot_radius() : 0.09};
-}
+Result<wm::FieldSize> from_idl(const idl::vision::Geometry& in) { return field_from_idl(in); }
 
 idl::common::TeamColor to_idl(TeamColor team) {
   return team == TeamColor::kBlue ? idl::common::TEAM_COLOR_BLUE : idl::common::TEAM_COLOR_YELLOW;

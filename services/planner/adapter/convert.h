@@ -17,6 +17,7 @@
 #include "idl/world.h"
 #include "libs/common/result.h"
 #include "libs/common/team.h"
+#include "libs/domain/idl_convert.h"
 #include "services/planner/core/planner.h"
 
 namespace ssl::planner {
@@ -27,17 +28,12 @@ namespace ssl::planner {
 /// the sample's publish time (world_model predicts to it).
 Result<wm::WorldState> from_idl(const idl::world::WorldState& in);
 
-/// The league's command by NAME (the IDL order is the league's; the core's enum follows it too). nullopt
-/// for a value outside the IDL enum (a corrupt sample).
-std::optional<wm::RefereeCommand> command_from_idl(idl::referee::Command command);
+/// referee.state -> RefereeInfo by the shared conversion (libs/domain/idl_convert.h: the same validation
+/// as world_model's), without blue_team_on_positive_half: the team frame comes with world.state.
+Result<wm::RefereeInfo> from_idl(const idl::referee::RefereeState& in);
 
-/// referee.state -> what the planner uses: command, counter, sides, designated position (m, vision frame),
-/// next command, both goalkeepers, and OUR team's can_place_ball / max_allowed_bots.
-Result<RefereeInput> from_idl(const idl::referee::RefereeState& in, TeamColor our_team);
-
-/// vision.geometry's field -> FieldSize (m). An error when a dimension is missing, non-positive or not
-/// finite (the node keeps the previous or the configured field). ball_radius and max_robot_radius default
-/// to 0.0215 m and 0.09 m when not sent.
+/// vision.geometry's field -> FieldGeometry (m), by the shared conversion. An error when a dimension is
+/// missing, non-positive or not finite (the node keeps the previous or the configured field).
 Result<wm::FieldSize> from_idl(const idl::vision::Geometry& in);
 
 // ---- outputs --------------------------------------------------------------------------------------------

@@ -79,7 +79,7 @@ void PlannerNode::take_inputs(time::Timestamp now) {
     }
   }
   for (const auto& s : referee_reader_.take()) {
-    auto referee = from_idl(s.data, config_.team);
+    auto referee = from_idl(s.data);
     if (referee) {
       inputs_.referee = *referee;
       have_referee_ = true;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libs/domain/keep_out.h"
 #include "libs/geometry/angle.h"
 #include "libs/geometry/project.h"
 #include "libs/geometry/segment.h"
@@ -20,28 +21,22 @@ constexpr double kRobotClearance = 0.22;  // m between two robots' centres when 
 constexpr double kRobotLookAhead = 1.0;   // m along the way in which robots are gone around
 constexpr int kProjectionPasses = 4;
 
-/// Axis-aligned box [x0, x1] x [-h, h], inflated by `margin`.
-struct Box {
-  double x0, x1, h;
-  bool contains(const Vec2& p) const { return p.x() >= x0 && p.x() <= x1 && std::abs(p.y()) <= h; }
-  /// The nearest point on the boundary, leaving through the faces towards the field (not the goal line).
-  Vec2 exit(const Vec2& p, bool opens_towards_positive_x) const {
-    const double to_front = opens_towards_positive_x ? x1 - p.x() : p.x() - x0;
-    const double to_side = h - std::abs(p.y());
-    if (to_front <= to_side) return {opens_towards_positive_x ? x1 : x0, p.y()};
-    return {p.x(), p.y() >= 0 ? h : -h};
-  }
-};
+/// How far a defense-area zone reaches behind its goal line (into the goal and up to the wall).
+constexpr double kDefenseZoneBehindGoal = 1.0;  // m
 
-Box our_box(const wm::Field& field, double margin) {
-  const double x = -field.half_length();
-  return {x - 1.0, x + field.size().penalty_area_depth + margin,
-          field.size().penalty_area_width / 2 + margin};
+/// The nearest point on `zone`'s boundary, leaving through the faces towards the field (not the goal line).
+Vec2 exit_towards_field(const geom::Rectangle& zone, const Vec2& p, bool opens_towards_positive_x) {
+  const double to_front = opens_towards_positive_x ? zone.max().x() - p.x() : p.x() - zone.min().x();
+  const double to_side = zone.max().y() - std::abs(p.y());
+  if (to_front <= to_side) return {opens_towards_positive_x ? zone.max().x() : zone.min().x(), p.y()};
+  return {p.x(), p.y() >= 0 ? zone.max().y() : zone.min().y()};
 }
-Box their_box(const wm::Field& field, double margin) {
-  const double x = field.half_length();
-  return {x - field.size().penalty_area_depth - margin, x + 1.0,
-          field.size().penalty_area_width / 2 + margin};
+
+geom::Rectangle our_zone(const wm::Field& field, double margin) {
+  return defense_area_keep_out(field.size(), -1, margin, kDefenseZoneBehindGoal);
+}
+geom::Rectangle their_zone(const wm::Field& field, double margin) {
+  return defense_area_keep_out(field.size(), +1, margin, kDefenseZoneBehindGoal);
 }
 
 Vec2 push_out_of_circle(const Vec2& p, const Vec2& center, double radius, const Vec2& fallback) {
@@ -90,19 +85,19 @@ Vec2 project_out(const Vec2& target, const MotionIntent& intent, const Zones& zo
   for (int pass = 0; pass < kProjectionPasses; ++pass) {
     const Vec2 before = p;
     if (intent.avoid_their_defense_area) {
-      const Box box = their_box(zones.field, zones.their_defense_margin);
-      if (box.contains(p)) p = box.exit(p, false);
+      const geom::Rectangle zone = their_zone(zones.field, zones.their_defense_margin);
+      if (zone.contains(p)) p = exit_towards_field(zone, p, false);
     }
     if (intent.avoid_our_defense_area) {
-      const Box box = our_box(zones.field, zones.our_defense_margin);
-      if (box.contains(p)) p = box.exit(p, true);
+      const geom::Rectangle zone = our_zone(zones.field, zones.our_defense_margin);
+      if (zone.contains(p)) p = exit_towards_field(zone, p, true);
     }
-    if (intent.avoid_placement_corridor && zones.ball && zones.placement_target) {
-      const geom::Segment spine{*zones.ball, *zones.placement_target};
+    if (intent.avoid_placement_corridor && zones.placement_corridor) {
+      const geom::Segment& spine = zones.placement_corridor->spine;
       const Vec2 q = geom::project(p, spine).point;
       Vec2 side = geom::perpendicular(geom::normalized_or_zero(spine.direction()));
       if (side.squaredNorm() == 0) side = Vec2(-1, 0);
-      p = push_out_of_circle(p, q, zones.placement_corridor_radius, side);
+      p = push_out_of_circle(p, q, zones.placement_corridor->radius, side);
     }
     if (intent.avoid_ball_radius > 0 && zones.ball) {
       // Fallback direction: towards our goal (where defenders want to be anyway).
@@ -153,17 +148,17 @@ RobotCommand SimpleMotionPlanner::plan(const wm::RobotState& robot, const Motion
     escape += n > 1e-9 ? Vec2(d / n) : Vec2(-1, 0);
   };
   if (intent.avoid_ball_radius > 0 && zones.ball) leave_disc(*zones.ball, intent.avoid_ball_radius);
-  std::optional<geom::Segment> corridor;
-  if (intent.avoid_placement_corridor && zones.ball && zones.placement_target) {
-    corridor = geom::Segment{*zones.ball, *zones.placement_target};
-    leave_disc(geom::project(p, *corridor).point, zones.placement_corridor_radius);
+  std::optional<geom::Stadium> corridor;
+  if (intent.avoid_placement_corridor && zones.placement_corridor) {
+    corridor = zones.placement_corridor;
+    leave_disc(geom::project(p, corridor->spine).point, corridor->radius);
   }
-  const auto leave_box = [&](const Box& box, bool towards_positive_x) {
-    if (!box.contains(p)) return;
-    escape += geom::normalized_or_zero(box.exit(p, towards_positive_x) - p);
+  const auto leave_box = [&](const geom::Rectangle& zone, bool towards_positive_x) {
+    if (!zone.contains(p)) return;
+    escape += geom::normalized_or_zero(exit_towards_field(zone, p, towards_positive_x) - p);
   };
-  const Box their = their_box(zones.field, zones.their_defense_margin);
-  const Box ours = our_box(zones.field, zones.our_defense_margin);
+  const geom::Rectangle their = their_zone(zones.field, zones.their_defense_margin);
+  const geom::Rectangle ours = our_zone(zones.field, zones.our_defense_margin);
   if (intent.avoid_their_defense_area) leave_box(their, false);
   if (intent.avoid_our_defense_area) leave_box(ours, true);
 
@@ -194,15 +189,15 @@ RobotCommand SimpleMotionPlanner::plan(const wm::RobotState& robot, const Motion
         if (auto d = detour(p, dir, dist, *zones.ball, intent.avoid_ball_radius)) dir = *d;
       }
       if (corridor) {
-        const Vec2 q = geom::project(p + dir * std::min(dist, 0.5), *corridor).point;
-        if (auto d = detour(p, dir, dist, q, zones.placement_corridor_radius)) dir = *d;
+        const Vec2 q = geom::project(p + dir * std::min(dist, 0.5), corridor->spine).point;
+        if (auto d = detour(p, dir, dist, q, corridor->radius)) dir = *d;
       }
-      const auto around_box = [&](const Box& box, bool towards_positive_x) {
+      const auto around_box = [&](const geom::Rectangle& zone, bool towards_positive_x) {
         bool hit = false;
-        for (int i = 1; i <= 8 && !hit; ++i) hit = box.contains(p + dir * (dist * i / 8.0));
+        for (int i = 1; i <= 8 && !hit; ++i) hit = zone.contains(p + dir * (dist * i / 8.0));
         if (!hit) return;
-        const double x = towards_positive_x ? box.x1 + 0.05 : box.x0 - 0.05;
-        const Vec2 corners[2] = {{x, box.h + 0.05}, {x, -box.h - 0.05}};
+        const double x = towards_positive_x ? zone.max().x() + 0.05 : zone.min().x() - 0.05;
+        const Vec2 corners[2] = {{x, zone.max().y() + 0.05}, {x, zone.min().y() - 0.05}};
         const auto cost = [&](const Vec2& c) { return (c - p).norm() + (target - c).norm(); };
         const Vec2 corner = cost(corners[0]) <= cost(corners[1]) ? corners[0] : corners[1];
         dir = geom::normalized_or_zero(corner - p);

@@ -20,6 +20,7 @@
 
 #include "services/planner/core/planner.h"
 #include "libs/domain/team_field.h"
+#include "libs/geometry/stadium.h"
 #include "libs/domain/world.h"
 
 namespace ssl::planner {
@@ -48,8 +49,7 @@ struct MotionIntent {
 struct Zones {
   wm::Field field = wm::Field();
   std::optional<Vec2> ball;
-  std::optional<Vec2> placement_target;  // designated position: the corridor is ball -> it
-  double placement_corridor_radius = 0;  // m, robot centre distance from the corridor's spine
+  std::optional<geom::Stadium> placement_corridor;  // ball -> designated position, for robot centres
   double their_defense_margin = 0.3;     // m, robot centre distance from their defense area
   double our_defense_margin = 0.1;       // m, robot centre distance from our defense area (non-keepers)
   double field_margin = 0.05;            // m, how far beyond the field lines a centre may go

@@ -9,6 +9,7 @@
 #include "services/planner/core/plays.h"
 #include "services/planner/core/rules.h"
 #include "libs/domain/game_state.h"
+#include "libs/domain/keep_out.h"
 #include "libs/domain/team_frame.h"
 
 namespace ssl::planner {
@@ -238,7 +239,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   if (last_now) dt = std::clamp(time::to_seconds(now - *last_now), 0.001, 0.05);
   last_now = now;
 
-  const wm::RefereeInfo& referee = inputs.referee.info;
+  const wm::RefereeInfo& referee = inputs.referee;
   // The team frame world_model derived from the referee's side; never re-derived here.
   const wm::TeamFrame frame = wm::TeamFrame::with_flip(inputs.world.flipped);
   const wm::WorldState& world = inputs.world;
@@ -268,7 +269,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   s.ball_velocity = ball_known ? Vec2(world.ball.velocity.head<2>()) : Vec2::Zero();
   s.next_command = referee.next_command;
   s.we_are_blue = config.team == TeamColor::kBlue;
-  s.can_place_ball = inputs.referee.our_can_place_ball;
+  s.can_place_ball = game.we_can_place_ball();
   s.placement_target = game.ball_placement_position();
   s.robots = robots;
   s.enemies = enemies;
@@ -278,8 +279,11 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   }
   s.zones.field = s.field;
   s.zones.ball = ball_known ? std::optional<Vec2>(ball) : std::nullopt;
-  s.zones.placement_target = s.placement_target;
-  s.zones.placement_corridor_radius = config.ball_keep_away + config.robot_radius + config.keep_away_margin;
+  s.zones.placement_corridor.reset();
+  if (s.zones.ball && s.placement_target) {
+    s.zones.placement_corridor = placement_keep_out(*s.zones.ball, *s.placement_target, config.robot_radius,
+                                                    config.ball_keep_away + config.keep_away_margin);
+  }
   s.zones.their_defense_margin =
       config.defense_area_keep_away + config.robot_radius + config.keep_away_margin;
   s.zones.our_defense_margin = config.robot_radius + 0.05;

@@ -28,6 +28,7 @@
 #include "libs/common/team.h"
 #include "libs/time/time.h"
 #include "libs/domain/world.h"
+#include "libs/domain/rules.h"
 
 namespace ssl::planner {
 
@@ -36,16 +37,9 @@ using wm::Vec2;
 struct MotionIntent;   // motion.h
 class MotionPlanner;   // motion.h
 
-/// The referee state the planner uses (from referee.state). Positions in the VISION frame, as sent.
-struct RefereeInput {
-  wm::RefereeInfo info;               // command, counter, side, designated position, next command, keepers
-  bool our_can_place_ball = true;     // TeamInfo.can_place_ball of OUR team
-  std::uint32_t our_max_allowed_bots = 11;
-};
-
 struct PlannerInputs {
   wm::WorldState world;               // TEAM frame (world.state)
-  RefereeInput referee;
+  wm::RefereeInfo referee;            // referee.state, VISION frame; its side is not read (world.flipped is)
   std::optional<wm::FieldSize> field; // from vision.geometry when known, else the configured division's
 };
 
@@ -98,15 +92,15 @@ struct PlannerConfig {
   MotionLimits limits;
   double tick_period = 1.0 / 100;      // s, nominal (used for acceleration limiting)
   double robot_radius = 0.09;          // m
-  double stop_speed = 1.5;             // m/s, rules: at most 1.5 m/s during STOP (a margin is applied below it)
+  double stop_speed = rules::kStopMaxSpeed;  // m/s during STOP (a margin is applied below it)
   double stop_speed_margin = 0.2;      // m/s below stop_speed we aim for
-  double ball_keep_away = 0.5;         // m, rules: distance to the ball during STOP / their restarts
+  double ball_keep_away = rules::kStopBallDistance;  // m to the ball during STOP / their restarts
   double keep_away_margin = 0.1;       // m, extra we keep to be safe
-  double defense_area_keep_away = 0.2; // m, rules: distance to the opponent defense area during STOP
-  double placement_tolerance = 0.15;   // m, rules: ball placement success radius
-  double penalty_line_behind = 1.0;    // m, rules 13.3 (current rulebook): others >= 1 m behind the ball
+  double defense_area_keep_away = rules::kAttackerDefenseAreaDistance;  // m, their defense area in STOP
+  double placement_tolerance = rules::kPlacementTolerance;  // m, ball placement success radius
+  double penalty_line_behind = rules::kPenaltyDistanceBehindBall;  // m, others behind the penalty ball
   double ball_placement_speed = 1.0;   // m/s, the placer while it carries the ball
-  double kick_speed = 5.0;             // m/s, shots at the goal (rules: at most 6.5 m/s)
+  double kick_speed = 5.0;             // m/s, shots at the goal (below rules::kMaxBallSpeed)
   double role_hysteresis = 0.3;        // m, a new role assignment must be this much (and 10 %) cheaper
   wm::FieldSize default_field;         // until vision.geometry arrives (division A)
 };

@@ -129,24 +129,26 @@ class Script {
   /// Sets the referee command (a new counter when it changes); `designated_team` is converted to vision.
   void command(RefereeCommand command, std::optional<RefereeCommand> next = std::nullopt,
                std::optional<Vec2> designated_team = std::nullopt) {
-    if (command != referee_.info.command || counter_ == 0) ++counter_;
-    referee_.info.command = command;
-    referee_.info.command_counter = counter_;
-    referee_.info.blue_team_on_positive_half = side_.blue_on_positive_half;
-    referee_.info.next_command = next;
-    referee_.info.designated_position.reset();
-    if (designated_team) referee_.info.designated_position = side_.frame().to_vision_point(*designated_team);
-    referee_.info.blue_goalkeeper = side_.us == TeamColor::kBlue ? kOurKeeper : 4;
-    referee_.info.yellow_goalkeeper = side_.us == TeamColor::kYellow ? kOurKeeper : 4;
+    if (command != referee_.command || counter_ == 0) ++counter_;
+    referee_.command = command;
+    referee_.command_counter = counter_;
+    referee_.blue_team_on_positive_half = side_.blue_on_positive_half;
+    referee_.next_command = next;
+    referee_.designated_position.reset();
+    if (designated_team) referee_.designated_position = side_.frame().to_vision_point(*designated_team);
+    referee_.blue_goalkeeper = side_.us == TeamColor::kBlue ? kOurKeeper : 4;
+    referee_.yellow_goalkeeper = side_.us == TeamColor::kYellow ? kOurKeeper : 4;
   }
-  void can_place(bool can) { referee_.our_can_place_ball = can; }
+  void can_place(bool can) {
+    (side_.us == TeamColor::kBlue ? referee_.blue_can_place_ball : referee_.yellow_can_place_ball) = can;
+  }
 
   PlannerInputs inputs() const { return {.world = world_, .referee = referee_, .field = std::nullopt}; }
 
  private:
   Side side_;
   wm::WorldState world_;
-  RefereeInput referee_;
+  wm::RefereeInfo referee_;
   std::uint32_t counter_ = 0;
 };
 

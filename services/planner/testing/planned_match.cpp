@@ -1,5 +1,10 @@
 #include "services/planner/testing/planned_match.h"
 
+#include <stdexcept>
+
+#include "libs/domain/idl_convert.h"
+#include "services/referee_gateway/adapter/convert.h"
+
 namespace ssl::planner::testing {
 namespace {
 
@@ -28,23 +33,6 @@ std::optional<referee::BuiltinReferee> make_referee(const PlannedMatchOptions& o
                                   .blue_on_positive_half = options.blue_on_positive_half});
 }
 
-/// What one team's planner and world model take from the referee state (the planner's referee.state
-/// conversion, for the in-process referee: the command enums share the league's order).
-RefereeInput referee_input_of(const referee::RefereeState& state, TeamColor team) {
-  RefereeInput input;
-  input.info.command = static_cast<wm::RefereeCommand>(state.command);
-  input.info.command_counter = state.command_counter;
-  input.info.blue_team_on_positive_half = state.blue_team_on_positive_half;
-  input.info.designated_position = state.designated_position;
-  if (state.next_command) input.info.next_command = static_cast<wm::RefereeCommand>(*state.next_command);
-  input.info.yellow_goalkeeper = state.yellow.goalkeeper;
-  input.info.blue_goalkeeper = state.blue.goalkeeper;
-  const referee::TeamInfo& ours = team == TeamColor::kYellow ? state.yellow : state.blue;
-  input.our_can_place_ball = ours.can_place_ball;
-  input.our_max_allowed_bots = ours.max_allowed_bots;
-  return input;
-}
-
 }  // namespace
 
 PlannedMatch::PlannedMatch(const PlannedMatchOptions& options)
@@ -58,7 +46,7 @@ PlannedMatch::PlannedMatch(const PlannedMatchOptions& options)
   yellow_model_.on_geometry(wm::testing::from_sim(harness_.sim().geometry()));
   teams_.push_back({TeamColor::kBlue, Planner(planner_config(TeamColor::kBlue, options.field)), {}});
   teams_.push_back({TeamColor::kYellow, Planner(planner_config(TeamColor::kYellow, options.field)), {}});
-  scripted_.info.blue_team_on_positive_half = options.blue_on_positive_half;
+  scripted_.blue_team_on_positive_half = options.blue_on_positive_half;
 }
 
 const wm::WorldModel& PlannedMatch::model(TeamColor team) const {
@@ -77,8 +65,12 @@ void PlannedMatch::start_match() {
   if (builtin_) (void)builtin_->command(referee::Command::kStop, harness_.now());
 }
 
-RefereeInput PlannedMatch::referee_input(TeamColor team) const {
-  return builtin_ ? referee_input_of(builtin_->state(), team) : scripted_;
+wm::RefereeInfo PlannedMatch::referee_info() const {
+  if (!builtin_) return scripted_;
+  // Through the wire types and the services' one conversion, as referee.state reaches them.
+  Result<wm::RefereeInfo> info = referee_info_from_idl(referee::to_idl(builtin_->state()));
+  if (!info) throw std::logic_error("the built-in referee's state does not convert: " + info.error().message);
+  return *info;
 }
 
 void PlannedMatch::step_referee(wm::testing::SimHarness& harness, time::Timestamp now) {
@@ -125,14 +117,14 @@ void PlannedMatch::tick(wm::testing::SimHarness& harness) {
   } else {
     const double t = time::to_seconds(now - start_);
     while (next_command_ < script_.size() && script_[next_command_].at <= t + 1e-9) {
-      scripted_.info.command = script_[next_command_++].command;
-      ++scripted_.info.command_counter;
+      scripted_.command = script_[next_command_++].command;
+      ++scripted_.command_counter;
     }
   }
+  const wm::RefereeInfo referee = referee_info();
   for (Team& team : teams_) {
     wm::WorldModel& model = model_of(team.color);
-    const RefereeInput referee = referee_input(team.color);
-    model.on_referee(referee.info, now);
+    model.on_referee(referee, now);
     for (const sim::RobotFeedback& f : harness.sim().feedback(team.color)) {
       model.on_feedback({.id = f.id, .ball_in_dribbler = f.dribbler_ball_contact}, now);
     }

@@ -89,14 +89,14 @@ class PlannedMatch {
 
   void tick(wm::testing::SimHarness& harness);
   void step_referee(wm::testing::SimHarness& harness, time::Timestamp now);
-  RefereeInput referee_input(TeamColor team) const;
+  wm::RefereeInfo referee_info() const;
   wm::WorldModel& model_of(TeamColor team);
 
   wm::testing::SimHarness harness_;  // holds the simulator and BLUE's world model
   wm::WorldModel yellow_model_;
   std::vector<Team> teams_;
   std::uint32_t robots_;
-  RefereeInput scripted_;  // the scripted referee
+  wm::RefereeInfo scripted_;  // the scripted referee
   std::optional<referee::BuiltinReferee> builtin_;
   std::optional<std::uint32_t> teleported_for_;  // command counter of the last placement the simulator did
   std::uint64_t placements_teleported_ = 0;

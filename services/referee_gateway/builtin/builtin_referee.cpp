@@ -7,6 +7,7 @@
 #include <limits>
 #include <set>
 
+#include "libs/domain/keep_out.h"
 #include "libs/geometry/distance.h"
 #include "services/referee_gateway/builtin/commands.h"
 
@@ -973,9 +974,9 @@ void BuiltinReferee::judge_keep_out(const CleanObservation& seen, Timestamp now)
   const time::Duration persistence = duration_from_seconds(rule.violation_persistence);
   for (const ObservedRobot& robot : seen.robots) {
     if (!both_teams && robot.team == executing) continue;
-    const double distance = (robot.position - *seen.ball).norm() - field_.max_robot_radius;
+    const geom::Circle zone = ball_keep_out(*seen.ball, field_.max_robot_radius, rule.radius);
     const auto key = std::pair{robot.team, robot.id};
-    if (distance >= rule.radius) {
+    if (geom::signed_distance(robot.position, zone) >= 0) {
       keep_out_since_.erase(key);
       continue;
     }
@@ -986,7 +987,7 @@ void BuiltinReferee::judge_keep_out(const CleanObservation& seen, Timestamp now)
            .by_team = to_team(robot.team),
            .by_bot = robot.id,
            .location = robot.position,
-           .value = std::max(distance, 0.0)},
+           .value = std::max(geom::distance(robot.position, *seen.ball) - field_.max_robot_radius, 0.0)},
           now, /*is_foul=*/true);
   }
 }

@@ -111,6 +111,7 @@
 
 #include "libs/domain/division.h"
 #include "libs/domain/field.h"
+#include "libs/domain/rules.h"
 #include "libs/common/result.h"
 #include "libs/common/team.h"
 #include "libs/geometry/vec2.h"
@@ -163,15 +164,15 @@ class BuiltinReferee {
  public:
   static constexpr std::uint32_t kMaxRobotId = 15;
   static constexpr double kTouchMargin = 0.02;     // m beyond robot + ball radius that counts as touch
-  static constexpr double kInPlayDistance = 0.05;  // m the ball moves after a kick command: in play
+  static constexpr double kInPlayDistance = rules::kInPlayDistance;  // m a kicked ball moves: in play
   static constexpr double kSpeedBaseline = 0.1;    // s over which an unmeasured ball speed is estimated
   static constexpr double kBallAtRestSpeed = 0.1;  // m/s
   static constexpr double kPlacementHold = 0.5;    // s the placed ball must stay placed and at rest
   static constexpr std::uint32_t kTimeoutsPerTeam = 4;
   static constexpr double kTimeoutBudget = 300;              // s per team
   static constexpr std::uint32_t kMaxPlacementFailures = 5;  // then the team may no longer place
-  static constexpr double kRestartDefenseAreaDistance = 1.0;  // m a restart's ball keeps from defense areas
-  static constexpr double kFoulRepeat = 2.0;                // s before a non-stopping foul is raised again
+  static constexpr double kRestartDefenseAreaDistance = rules::kRestartDefenseAreaDistance;  // m, the ball
+  static constexpr double kFoulRepeat = rules::kFoulRepeat;  // s before a non-stopping foul is raised again
   static constexpr double kBoundaryCrossingWindow = 1.0;    // s after the ball left the field
   static constexpr double kCrashContactMargin = 0.01;       // m beyond two robot radii that counts as contact
   static constexpr double kDribblingReachMargin = 0.01;     // m beyond robot + ball radius: in the dribbler

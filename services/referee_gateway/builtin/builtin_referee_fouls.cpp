@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "libs/domain/keep_out.h"
 #include "libs/geometry/distance.h"
 #include "services/referee_gateway/builtin/builtin_referee.h"
 #include "services/referee_gateway/builtin/commands.h"
@@ -301,8 +302,8 @@ void BuiltinReferee::judge_boundary_crossing(const CleanObservation& seen, Times
   const BoundaryCrossingRule& rule = profile_.rules.boundary_crossing;
   if (!rule.enabled || !ball_left_field_ || boundary_crossing_raised_ || !seen.ball) return;
   if (now - ball_left_field_->first > duration_from_seconds(kBoundaryCrossingWindow)) return;
-  const bool beyond_walls = std::abs(seen.ball->x()) > 0.5 * field_.field_length + rule.boundary_width ||
-                            std::abs(seen.ball->y()) > 0.5 * field_.field_width + rule.boundary_width;
+  const bool beyond_walls = std::abs(seen.ball->x()) > field_.half_length() + field_.boundary_width_goal_line ||
+                            std::abs(seen.ball->y()) > field_.half_width() + field_.boundary_width;
   if (!beyond_walls) return;
   boundary_crossing_raised_ = true;
   const std::optional<Touch>& kicker = ball_left_field_->second;
@@ -357,11 +358,10 @@ void BuiltinReferee::judge_placement_interference(const CleanObservation& seen, 
   const time::Duration persistence = duration_from_seconds(rule.violation_persistence);
   for (const ObservedRobot& robot : seen.robots) {
     if (robot.team == *executing_team_) continue;
-    const double distance =
-        geom::distance(robot.position, geom::Segment{*seen.ball, *state_.designated_position}) -
-        field_.max_robot_radius;
+    const geom::Stadium zone =
+        placement_keep_out(*seen.ball, *state_.designated_position, field_.max_robot_radius, rule.radius);
     const auto key = std::pair{robot.team, robot.id};
-    if (distance >= rule.radius) {
+    if (geom::signed_distance(robot.position, zone) >= 0) {
       interference_since_.erase(key);
       continue;
     }

@@ -1185,6 +1185,19 @@ TEST(BuiltinReferee, ABallKickedOverTheWallIsABoundaryCrossing) {
   }
 }
 
+TEST(BuiltinReferee, BehindADivisionAGoalLineTheWallIsTheWiderBoundaryAway) {
+  // Division A: 0.6 m from the goal lines to the walls (0.3 m along the touch lines).
+  for (const auto& [x, crossing] : {std::pair{6.59, false}, std::pair{6.61, true}}) {
+    BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_a(),
+                           {.yellow = {"Yellow FC", 0}, .blue = {"Blue FC", 0}, .blue_on_positive_half = true});
+    ASSERT_TRUE(referee.command(Command::kForceStart, at(0)));
+    referee.step(ball_at({5.8, 2.0}, {blue(2, {5.69, 2.0})}), at(1));
+    referee.step(ball_at({6.1, 2.0}), at(1.1));  // over the goal line beside the goal
+    referee.step(ball_at({x, 2.0}), at(1.2));
+    EXPECT_EQ(count_events(referee, GameEventType::kBoundaryCrossing), crossing ? 1u : 0u) << x;
+  }
+}
+
 TEST(BuiltinReferee, NearTheOpponentsDefenseAreaInStopIsAFoulAfterTheGrace) {
   for (const auto& [gap, foul] : {std::pair{0.19, true}, std::pair{0.21, false}}) {
     BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);

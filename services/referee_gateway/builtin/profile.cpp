@@ -131,9 +131,7 @@ Fields<BallSpeedRule> ball_speed_fields() {
 
 Fields<BoundaryCrossingRule> boundary_crossing_fields() {
   return {
-      field("enabled", &BoundaryCrossingRule::enabled),
-      field("boundary_width", &BoundaryCrossingRule::boundary_width).unit("m").range(0.05, 2)
-          .doc("from the field lines to the walls"),
+      field("enabled", &BoundaryCrossingRule::enabled).doc("the walls: the field geometry's boundary widths"),
   };
 }
 

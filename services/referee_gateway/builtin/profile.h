@@ -26,6 +26,7 @@
 #include <string_view>
 
 #include "libs/domain/division.h"
+#include "libs/domain/rules.h"
 #include "libs/common/result.h"
 #include "libs/common/team.h"
 
@@ -39,8 +40,8 @@ struct GoalDetectionRule {
 struct OutOfBoundsRule {
   bool enabled = false;
   bool ball_placement = false;  // true: the free-kick team places the ball; false: STOP, operator places it
-  double line_distance = 0;  // m inside the touch line (throw-in, corner, goal kick) and goal line (corner)
-  double goal_kick_distance = 0;  // m inside the goal line for a goal kick (1.0 per rules)
+  double line_distance = rules::kRestartLineDistance;  // m inside the touch line (throw-in, corner, goal kick) and goal line (corner)
+  double goal_kick_distance = rules::kGoalKickDistance;  // m inside the goal line for a goal kick
 };
 
 struct DefenseAreaRule {
@@ -53,16 +54,16 @@ struct DefenseAreaRule {
 /// preparation or free kick (before the ball is in play) the defenders keep `radius` from the ball.
 struct KeepOutRule {
   bool enabled = false;
-  double radius = 0;                 // m from the ball to the robot's nearest side (0.5 per rules)
-  double violation_persistence = 0;  // s a robot must stay too close before it is a foul
+  double radius = rules::kStopBallDistance;  // m from the ball to the robot's nearest side
+  double violation_persistence = rules::kViolationPersistence;  // s too close before it is a foul
 };
 
 /// Interfering with a placement: the other team's robots keep `radius` from the stadium ball -> target.
 struct PlacementInterferenceRule {
   bool enabled = false;
-  double radius = 0;                 // m (0.5 per rules)
-  double violation_persistence = 0;  // s (2 per rules)
-  double extra_time = 0;             // s added to the placing team's time per foul (10 per rules)
+  double radius = rules::kPlacementKeepOutDistance;                // m
+  double violation_persistence = rules::kViolationPersistence;     // s
+  double extra_time = rules::kPlacementInterferenceExtraTime;      // s added to the placing team's time per foul
 };
 
 /// Non-stopping: two robots of different teams touching with a relative speed along the line between
@@ -70,48 +71,48 @@ struct PlacementInterferenceRule {
 /// by less than `drawn_speed_difference` (BOT_CRASH_DRAWN).
 struct CrashRule {
   bool enabled = false;
-  double speed = 0;                   // m/s (1.5 per rules)
-  double drawn_speed_difference = 0;  // m/s (0.3 per rules)
+  double speed = rules::kCrashSpeed;                             // m/s
+  double drawn_speed_difference = rules::kCrashDrawnDifference;  // m/s
 };
 
 /// In STOP every robot stays at or below `max_speed` once `grace` passed since the command.
 struct StopSpeedRule {
   bool enabled = false;
-  double max_speed = 0;  // m/s (1.5 per rules)
-  double grace = 0;      // s (2 per rules)
+  double max_speed = rules::kStopMaxSpeed;  // m/s
+  double grace = rules::kStopGrace;         // s
 };
 
 /// Stopping: the kicker of a kickoff or free kick touches the ball again before another robot did (or
 /// stays in contact while it travels more than `distance`): free kick for the other team.
 struct DoubleTouchRule {
   bool enabled = false;
-  double distance = 0;  // m (0.05 per rules)
+  double distance = rules::kDoubleTouchDistance;  // m
 };
 
 /// Non-stopping: a robot accelerates the ball beyond `max_speed`.
 struct BallSpeedRule {
   bool enabled = false;
-  double max_speed = 0;  // m/s (6.5 per rules)
+  double max_speed = rules::kMaxBallSpeed;  // m/s
 };
 
-/// Stopping: the ball kicked over the field boundary (beyond the walls): free kick for the other team.
+/// Stopping: the ball kicked over the field boundary (beyond the walls, FieldGeometry's boundary widths):
+/// free kick for the other team.
 struct BoundaryCrossingRule {
   bool enabled = false;
-  double boundary_width = 0;  // m from the field lines to the walls (0.3 per rules)
 };
 
 /// Stopping: a robot dribbles the ball more than `max_distance` from where its contact started.
 struct DribblingRule {
   bool enabled = false;
-  double max_distance = 0;  // m (1 per rules)
+  double max_distance = rules::kMaxDribblingDistance;  // m
 };
 
 /// During STOP and free kicks (before the ball is in play) robots keep `distance` from the opponent's
 /// defense area; inside it for `violation_persistence`: a foul.
 struct AttackerDefenseAreaDistanceRule {
   bool enabled = false;
-  double distance = 0;               // m (0.2 per rules)
-  double violation_persistence = 0;  // s (2 per rules)
+  double distance = rules::kAttackerDefenseAreaDistance;        // m
+  double violation_persistence = rules::kViolationPersistence;  // s
 };
 
 /// Stopping: the ball lies in a team's own defense area longer than `time` while running.
@@ -124,7 +125,7 @@ struct KeeperHeldBallRule {
 /// cards) for longer than `grace` (the time to take a robot off).
 struct RobotCountRule {
   bool enabled = false;
-  double grace = 0;  // s (10 per rules)
+  double grace = rules::kRobotRemovalGrace;  // s
 };
 
 /// Cards: every `fouls_per_card`-th foul of a team raises MULTIPLE_FOULS and a yellow card, which lowers
@@ -132,8 +133,8 @@ struct RobotCountRule {
 /// are active is a red card (the robot stays off for the rest of the match).
 struct CardRule {
   bool enabled = false;
-  std::uint32_t fouls_per_card = 0;  // (3 per rules)
-  double yellow_card_duration = 0;   // s of playing time (120 per rules)
+  std::uint32_t fouls_per_card = rules::kFoulsPerCard;
+  double yellow_card_duration = rules::kYellowCardDuration;  // s of playing time
 };
 
 /// A game that does not go on: the ball not moved 0.05 m while running for `timeout` (rules: 5 s in
@@ -174,20 +175,20 @@ struct ExtraTimeSettings {
 };
 
 struct GameSettings {
-  double half_duration = 0;                     // s of playing time per half
-  double half_time = 0;                         // s of half-time break
+  double half_duration = rules::kHalfDuration;  // s of playing time per half
+  double half_time = rules::kHalfTime;          // s of half-time break
   TeamColor kickoff_team = TeamColor::kYellow;  // kicks off the first half; the other team the second
   bool force_start_after_goal = false;          // after a goal: STOP, then FORCE_START after stop_duration
   bool auto_continue = false;                   // pending kickoffs / penalties continue without the operator
   double stop_duration = 0;                     // s in STOP (or preparing) before an automatic continuation
   double prepare_timeout = 0;   // s: a preparation gets NORMAL_START at the latest now (auto_continue; rules 10)
-  double kickoff_timeout = 0;   // s after NORMAL_START a kickoff ball is in play without a kick (rules 10)
+  double kickoff_timeout = rules::kKickoffTimeout;  // s after NORMAL_START a kickoff ball is in play unkicked
   DivisionSeconds free_kick_timeout;  // s after a free kick its ball is in play without a kick (rules 5 / 10)
-  double penalty_timeout = 0;   // s a penalty may last after NORMAL_START (rules 10)
+  double penalty_timeout = rules::kPenaltyTimeout;  // s a penalty may last after NORMAL_START
   bool ball_placement = false;  // a team places the ball for a kickoff, penalty or FORCE_START whose ball is
                                 // not where the restart needs it (false: STOP until placed by hand)
-  double placement_timeout = 0;                 // s a team has to place the ball (30 per rules)
-  double placement_tolerance = 0;               // m between ball and target for a successful placement (0.15)
+  double placement_timeout = rules::kPlacementTimeout;      // s a team has to place the ball
+  double placement_tolerance = rules::kPlacementTolerance;  // m between ball and target when placed
   std::uint32_t early_end_goals = 0;  // a team with this many goals and a lead of 2 ends the match (rules 10;
                                       // 0: never)
   ExtraTimeSettings extra_time;

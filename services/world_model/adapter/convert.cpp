@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "libs/domain/idl_convert.h"
+
 namespace ssl::wm {
 namespace {
 
@@ -39,16 +41,11 @@ std::optional<DetectionFrame> from_idl(const idl::vision::DetectionFrame& in) {
   return out;
 }
 
-Geometry from_idl(const idl::vision::Geometry& in) {
+Result<Geometry> from_idl(const idl::vision::Geometry& in) {
+  Result<FieldSize> field = field_from_idl(in);
+  if (!field) return field.error();
   Geometry out;
-  const auto& f = in.field();
-  out.field = {.field_length = f.field_length(), .field_width = f.field_width(), .goal_width = f.goal_width(),
-               .goal_depth = f.goal_depth(), .boundary_width = f.boundary_width(),
-               .penalty_area_depth = f.penalty_area_depth(), .penalty_area_width = f.penalty_area_width(),
-               .center_circle_radius = f.center_circle_radius(),
-               .goal_center_to_penalty_mark = f.goal_center_to_penalty_mark(),
-               .ball_radius = f.ball_radius() > 0 ? f.ball_radius() : 0.0215,
-               .max_robot_radius = f.max_robot_radius() > 0 ? f.max_robot_radius() : 0.09};
+  out.field = *field;
   for (const auto& c : in.calibrations()) {
     if (!c.has_derived_world()) continue;
     out.cameras.push_back(
@@ -61,19 +58,7 @@ Geometry from_idl(const idl::vision::Geometry& in) {
   return out;
 }
 
-RefereeInfo from_idl(const idl::referee::RefereeState& in) {
-  RefereeInfo out;
-  out.command = static_cast<RefereeCommand>(static_cast<int>(in.command()));
-  out.command_counter = in.command_counter();
-  if (in.has_blue_team_on_positive_half()) out.blue_team_on_positive_half = in.blue_team_on_positive_half();
-  if (in.has_designated_position()) {
-    out.designated_position = Vec2(in.designated_position().x(), in.designated_position().y());
-  }
-  if (in.has_next_command()) out.next_command = static_cast<RefereeCommand>(static_cast<int>(in.next_command()));
-  out.yellow_goalkeeper = in.yellow().goalkeeper();
-  out.blue_goalkeeper = in.blue().goalkeeper();
-  return out;
-}
+Result<RefereeInfo> from_idl(const idl::referee::RefereeState& in) { return referee_info_from_idl(in); }
 
 RobotFeedback from_idl(const idl::robot::RobotFeedback& in) {
   return {.id = in.robot_id(), .ball_in_dribbler = in.ball_in_dribbler()};

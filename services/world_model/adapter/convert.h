@@ -11,14 +11,19 @@
 #include "idl/robot.h"
 #include "idl/vision.h"
 #include "idl/world.h"
+#include "libs/common/result.h"
 #include "libs/domain/world.h"
 
 namespace ssl::wm {
 
 /// nullopt when a coordinate is not finite (the frame is dropped and counted).
 std::optional<DetectionFrame> from_idl(const idl::vision::DetectionFrame& in);
-Geometry from_idl(const idl::vision::Geometry& in);
-RefereeInfo from_idl(const idl::referee::RefereeState& in);
+/// vision.geometry: the field by the shared conversion (libs/domain/idl_convert.h; an Error for a missing or
+/// non-finite dimension), the cameras and the ball model.
+Result<Geometry> from_idl(const idl::vision::Geometry& in);
+/// referee.state by the shared conversion (the planner's too): an Error for an unknown command or a
+/// non-finite designated position.
+Result<RefereeInfo> from_idl(const idl::referee::RefereeState& in);
 RobotFeedback from_idl(const idl::robot::RobotFeedback& in);
 std::vector<RobotCommand> from_idl(const idl::robot::RobotCommands& in);
 

@@ -53,12 +53,24 @@ TEST(WorldModelConvert, RefereeCommandsMapOneToOne) {
   in.blue_team_on_positive_half(true);
   in.has_designated_position(true);
   in.designated_position().x(1.0);
-  const RefereeInfo out = from_idl(in);
-  EXPECT_EQ(out.command, RefereeCommand::kBallPlacementBlue);
-  EXPECT_EQ(out.blue_team_on_positive_half, std::optional<bool>(true));
-  EXPECT_EQ(out.designated_position, std::optional<Vec2>(Vec2(1.0, 0)));
+  const Result<RefereeInfo> out = from_idl(in);
+  ASSERT_TRUE(out) << out.error().message;
+  EXPECT_EQ(out->command, RefereeCommand::kBallPlacementBlue);
+  EXPECT_EQ(out->blue_team_on_positive_half, std::optional<bool>(true));
+  EXPECT_EQ(out->designated_position, std::optional<Vec2>(Vec2(1.0, 0)));
   in.command(idl::referee::COMMAND_HALT);
-  EXPECT_EQ(from_idl(in).command, RefereeCommand::kHalt);
+  EXPECT_EQ(from_idl(in)->command, RefereeCommand::kHalt);
+}
+
+TEST(WorldModelConvert, CorruptRefereeStatesAndGeometriesAreRejected) {
+  idl::referee::RefereeState referee;
+  referee.command(static_cast<idl::referee::Command>(40));
+  EXPECT_FALSE(from_idl(referee)) << "an unknown command is not cast into the enum";
+  referee.command(idl::referee::COMMAND_STOP);
+  referee.has_designated_position(true);
+  referee.designated_position().x(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_FALSE(from_idl(referee));
+  EXPECT_FALSE(from_idl(idl::vision::Geometry{})) << "no dimensions: nothing to fuse with";
 }
 
 TEST(WorldModelConvert, WorldStateCarriesStampTeamFrameAndPossession) {

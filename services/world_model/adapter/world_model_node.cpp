@@ -59,8 +59,22 @@ WorldModelNode::WorldModelNode(const WorldModelServiceConfig& config, time::Cloc
 }
 
 std::size_t WorldModelNode::poll() {
-  for (auto& s : geometry_.take()) model_.on_geometry(from_idl(s.data));
-  for (auto& s : referee_.take()) model_.on_referee(from_idl(s.data), clock_->now());
+  for (auto& s : geometry_.take()) {
+    Result<Geometry> geometry = from_idl(s.data);
+    if (geometry) {
+      model_.on_geometry(*geometry);
+    } else {
+      ++rejected_geometry_;
+    }
+  }
+  for (auto& s : referee_.take()) {
+    Result<RefereeInfo> referee = from_idl(s.data);
+    if (referee) {
+      model_.on_referee(*referee, clock_->now());
+    } else {
+      ++rejected_referee_;
+    }
+  }
   for (auto& s : feedback_.take()) model_.on_feedback(from_idl(s.data), clock_->now());
   for (auto& s : commands_.take()) {
     // In force from when the planner published them (same host clock family), unless that stamp is
@@ -114,7 +128,7 @@ void WorldModelNode::report_health(time::Timestamp now) {
   report.latency_p50 = percentile(processing_times_, 0.5);
   report.latency_p99 = percentile(processing_times_, 0.99);
   report.errors = write_failures_;
-  report.dropped = malformed_ + c.low_confidence;
+  report.dropped = malformed_ + rejected_geometry_ + rejected_referee_ + c.low_confidence;
   report.counters = {{"frames", c.frames},
                      {"outliers_rejected", c.outliers_rejected},
                      {"tracks_created", c.tracks_created},
@@ -124,6 +138,8 @@ void WorldModelNode::report_health(time::Timestamp now) {
                      {"ball_restarts", c.ball_restarts},
                      {"dribbler_placements", c.dribbler_placements},
                      {"malformed_frames", malformed_},
+                     {"rejected_geometry", rejected_geometry_},
+                     {"rejected_referee", rejected_referee_},
                      {"low_confidence_detections", c.low_confidence}};
   (void)health_.publish(report);
   processing_times_.clear();

@@ -62,7 +62,9 @@ class WorldModelNode {
   dds::HealthReporter health_;
   std::uint64_t sequence_ = 0;
   std::uint64_t published_in_period_ = 0;
-  std::uint64_t malformed_ = 0;
+  std::uint64_t malformed_ = 0;           // detection frames with a non-finite number
+  std::uint64_t rejected_geometry_ = 0;   // vision.geometry samples the shared conversion refused
+  std::uint64_t rejected_referee_ = 0;    // referee.state samples the shared conversion refused
   std::uint64_t write_failures_ = 0;
   std::vector<double> processing_times_;  // s, this health period
   std::optional<time::Timestamp> last_frame_wall_;
