@@ -387,6 +387,30 @@ TEST_P(PlannerRefereeTest, GoalkeeperFromTheRefereeKeepsItsRole) {
   }
 }
 
+TEST_P(PlannerRefereeTest, TheKeeperStandsWhereAShotWillCrossItsLine) {
+  script_.command(RefereeCommand::kForceStart);
+  const double goal_line = -field().half_length();
+  const double half_goal = field().size().goal_width / 2;
+  // A shot from (-1.5, 0.6) aimed 0.3 m inside the far post: the keeper leaves the ball-goal line for it.
+  const Vec2 from(-1.5, 0.6);
+  const Vec2 aim(goal_line, -(half_goal - 0.1));
+  script_.set_ball(from, (aim - from).normalized() * 4.0);
+  ticks(2);
+  const MotionIntent& keeper = intent(testing::kOurKeeper);
+  EXPECT_EQ(keeper.skill, "block_shot");
+  const double t = (keeper.target.x() - from.x()) / (aim - from).x();
+  EXPECT_NEAR(keeper.target.y(), from.y() + t * (aim - from).y(), 1e-6);
+  EXPECT_LT(keeper.target.y(), 0.0) << "on the far side of the goal centre from the ball";
+
+  // The same ball rolling away from our goal, or wide of it: no shot, the keeper guards the ball-goal line.
+  for (const Vec2& velocity : {Vec2((from - aim).normalized() * 4.0), Vec2(-4.0, 2.0)}) {
+    script_.set_ball(from, velocity);
+    ticks(2);
+    EXPECT_EQ(intent(testing::kOurKeeper).skill, "guard_goal") << velocity.transpose();
+    EXPECT_GT(intent(testing::kOurKeeper).target.y(), 0.0) << velocity.transpose();
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(AllSides, PlannerRefereeTest, ::testing::ValuesIn(testing::all_sides()),
                          testing::side_name);
 

@@ -276,8 +276,24 @@ void fill(const Situation& s, PlayMemory& memory, std::uint32_t key, Formation f
 
 // ---- single roles -------------------------------------------------------------------------------------
 
-/// The goalkeeper on its goal line, between the ball and the goal centre. `touch_line`: centre so close to
-/// the line that the robot touches it (their penalty).
+/// A shot at our goal: the ball rolling towards our goal line at least this fast (m/s) and crossing it
+/// within the goal mouth widened by this margin (m) on each side.
+constexpr double kShotMinSpeed = 0.5;
+constexpr double kShotMouthMargin = 0.1;
+
+/// Where the ball, rolling straight on (friction slows it, never turns it), crosses the line x = `line_x`
+/// when it is a shot at our goal; nullopt otherwise.
+std::optional<double> shot_crossing(const Situation& s, double line_x) {
+  const Vec2& v = s.ball_velocity;
+  if (!s.ball_known || v.x() > -kShotMinSpeed || s.ball.x() <= line_x) return std::nullopt;
+  const double goal_line = -s.field.half_length();
+  const double y_at_goal = s.ball.y() + v.y() * (goal_line - s.ball.x()) / v.x();
+  if (std::abs(y_at_goal) > s.field.size().goal_width / 2 + kShotMouthMargin) return std::nullopt;
+  return s.ball.y() + v.y() * (line_x - s.ball.x()) / v.x();
+}
+
+/// The goalkeeper on its goal line: where a shot will cross it, else between the ball and the goal centre.
+/// `touch_line`: centre so close to the line that the robot touches it (their penalty).
 MotionIntent keeper_intent(const Situation& s, const MotionIntent& tmpl, bool touch_line) {
   MotionIntent intent = tmpl;
   intent.avoid_our_defense_area = false;
@@ -289,6 +305,10 @@ MotionIntent keeper_intent(const Situation& s, const MotionIntent& tmpl, bool to
   const Vec2 anchor(goal_line - 0.5, 0.0);
   double y = 0;
   if (s.ball.x() > anchor.x() + 1e-6) y = s.ball.y() * (x - anchor.x()) / (s.ball.x() - anchor.x());
+  if (const std::optional<double> crossing = shot_crossing(s, x)) {
+    y = *crossing;
+    intent.skill = "block_shot";
+  }
   const double max_y = s.field.size().goal_width / 2 - radius(s);
   intent.target = {x, std::clamp(y, -max_y, max_y)};
   intent.orientation = heading_to(intent.target, s.ball);
