@@ -1,0 +1,102 @@
+// Path search for one robot among obstacles, on time-optimal trajectories (trajectory.h).
+//
+// Candidates: the direct trajectory to the destination, and for each sub-destination sampled around the
+// robot (directions x radii) the trajectory towards it, left at one of a few switch times for a trajectory
+// from that state on to the destination. The best path of the last tick is a candidate too (re-planned from
+// the current state through the same sub-destination), so plans do not flicker. Each candidate is swept
+// in fixed time steps against every obstacle: between two steps the robot's move relative to a (moving)
+// obstacle is a segment, so a fast robot cannot jump over one. Score = arrival time, plus, when the path
+// collides, a penalty that is larger the sooner the first collision comes. An obstacle the robot stands
+// in at the start counts only once the path has left it (leaving it is always allowed).
+//
+// Everything is in one frame (the planner's team frame), metres and seconds from now. Pure: no clocks.
+//
+//   PathObstacles obstacles;
+//   obstacles.circles.push_back({.position = enemy.position, .velocity = enemy.velocity, .radius = 0.2});
+//   PathResult path = search_path(robot.position, robot.velocity, target, limits, obstacles);
+//   Vec2 reference = path.path.position(0.05);
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "libs/geometry/rectangle.h"
+#include "libs/geometry/stadium.h"
+#include "libs/geometry/vec2.h"
+#include "services/planner/core/trajectory.h"
+
+namespace ssl::planner {
+
+/// A trajectory, optionally left at `switch_time` for a second one that starts from its state then.
+class TrajectoryPath {
+ public:
+  TrajectoryPath() = default;
+  explicit TrajectoryPath(const Trajectory2D& direct) : first_(direct) {}
+  TrajectoryPath(const Trajectory2D& first, double switch_time, const Trajectory2D& second)
+      : first_(first), second_(second), switch_time_(switch_time) {}
+
+  double duration() const { return second_ ? switch_time_ + second_->duration() : first_.duration(); }
+  geom::Vec2 position(double t) const;
+  geom::Vec2 velocity(double t) const;
+  geom::Vec2 destination() const { return second_ ? second_->target() : first_.target(); }
+  /// The sub-destination the first trajectory heads for (the destination for a direct path).
+  geom::Vec2 via() const { return first_.target(); }
+  bool is_direct() const { return !second_.has_value(); }
+
+ private:
+  Trajectory2D first_;
+  std::optional<Trajectory2D> second_;
+  double switch_time_ = 0;
+};
+
+/// A disc moving at constant velocity (a robot; `radius`: the sum of both robots' radii plus any margin).
+struct MovingCircle {
+  geom::Vec2 position = geom::Vec2::Zero();
+  geom::Vec2 velocity = geom::Vec2::Zero();
+  double radius = 0;
+};
+
+/// A disc following a planned path (one of our robots planned earlier this tick).
+struct PathCircle {
+  TrajectoryPath path;
+  double radius = 0;
+};
+
+struct PathObstacles {
+  std::vector<MovingCircle> circles;
+  std::vector<PathCircle> paths;
+  std::vector<geom::Rectangle> rectangles;  // static: defense areas, goals
+  std::vector<geom::Stadium> stadiums;      // static: the placement corridor, a ball keep-out
+  std::optional<geom::Rectangle> bounds;    // where the centre must stay (field or walls minus margin)
+};
+
+struct PathSearchParams {
+  int directions = 16;                              // sub-destinations on each ring
+  std::vector<double> radii = {0.4, 0.8, 1.4, 2.2};  // m, rings around the robot
+  std::vector<double> switch_times = {0.2, 0.5};    // s along the first trajectory
+  double step = 0.1;  // s between collision checks (swept chords; obstacles grown by a * step^2 / 8 to cover the curve)
+  double horizon = 3.0;                             // s: collisions later than this are not looked for
+  double collision_penalty = 100.0;                 // s added to a colliding path's score: any free path wins
+  double early_collision_weight = 5.0;              // s added per second of the horizon left at the collision
+  double keep_previous_margin = 0.1;                // s another path must win by to replace last tick's
+};
+
+struct PathResult {
+  TrajectoryPath path;
+  double score = 0;                               // s (arrival time, plus the penalties)
+  std::optional<double> first_collision;          // s from now; nullopt: collision-free over the horizon
+  int candidates = 0;                             // paths evaluated
+};
+
+/// The first time (s) `path` comes inside an obstacle grown by `margin` (m) within `horizon`, swept in
+/// `step`s; nullopt if never.
+std::optional<double> first_collision(const TrajectoryPath& path, const PathObstacles& obstacles, double step,
+                                      double horizon, double margin = 0);
+
+/// The best path from (`position`, `velocity`) to rest at `destination`. `previous`: last tick's choice
+/// for this robot (its sub-destination is tried again).
+PathResult search_path(const geom::Vec2& position, const geom::Vec2& velocity, const geom::Vec2& destination,
+                       const TrajectoryLimits& limits, const PathObstacles& obstacles,
+                       const PathSearchParams& params = {}, const TrajectoryPath* previous = nullptr);
+
+}  // namespace ssl::planner
