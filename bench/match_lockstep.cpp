@@ -7,6 +7,7 @@
 // (division A) figure.
 //
 //   build/bench/match_lockstep [--half S] [--seed N] [--robots 6|11|both]
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -25,17 +26,20 @@ struct Figures {
   double realtime_factor = 0;
   double simulated = 0;  // s
   bool final_whistle = false;
+  double closest_robots = 1e9;  // m, the smallest centre distance of two robots in any frame
+  std::uint64_t close_frames = 0;  // frames with two robots closer than 2 radii + 1 cm
   ssl::sslctl::MatchReport report;
 };
 
-Figures play(const ssl::sim::FieldGeometry& field, std::uint32_t robots, double half, std::uint64_t seed) {
+Figures play(const ssl::sim::FieldGeometry& field, std::uint32_t robots, double half, std::uint64_t seed,
+             ssl::planner::MotionControl motion) {
   auto profile = ssl::referee::load_referee_profile("simulation");
   if (!profile) {
     std::fprintf(stderr, "match_lockstep: %s\n", profile.error().message.c_str());
     std::exit(1);
   }
   profile->game.half_duration = half;
-  PlannedMatch match({.field = field, .robots = robots, .seed = seed, .referee = *profile});
+  PlannedMatch match({.field = field, .robots = robots, .seed = seed, .referee = *profile, .motion = motion});
   ssl::sslctl::MatchReportBuilder report;
   match.start_match();
   const auto start = std::chrono::steady_clock::now();
@@ -44,6 +48,14 @@ Figures play(const ssl::sim::FieldGeometry& field, std::uint32_t robots, double 
       std::chrono::hours(1), [&](const ssl::sim::DetectionFrame&, const ssl::sim::WorldSnapshot& truth) {
         report.on_referee(match.builtin_referee()->state(), truth.time);
         report.on_ball(truth.ball.position.head<2>(), truth.time);
+        double closest = 1e9;
+        for (std::size_t i = 0; i < truth.robots.size(); ++i) {
+          for (std::size_t j = i + 1; j < truth.robots.size(); ++j) {
+            closest = std::min(closest, (truth.robots[i].position - truth.robots[j].position).norm());
+          }
+        }
+        out.closest_robots = std::min(out.closest_robots, closest);
+        if (closest < 2 * field.max_robot_radius + 0.01) ++out.close_frames;
       });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.simulated = ssl::time::to_seconds(match.sim().snapshot().time - match.start());
@@ -55,6 +67,8 @@ Figures play(const ssl::sim::FieldGeometry& field, std::uint32_t robots, double 
 void print(const char* name, const Figures& f, const char* budget) {
   std::printf("%s: %.0f s simulated (final whistle: %s), %.1fx real time%s\n", name, f.simulated,
               f.final_whistle ? "yes" : "NO", f.realtime_factor, budget);
+  std::printf("closest two robots: %.3f m apart; frames with two closer than 2 radii + 1 cm: %llu\n",
+              f.closest_robots, static_cast<unsigned long long>(f.close_frames));
   std::printf("%s\n", ssl::sslctl::to_text(f.report).c_str());
 }
 
@@ -64,6 +78,7 @@ int main(int argc, char** argv) {
   double half = 300;
   std::uint64_t seed = 42;
   std::string robots = "both";
+  ssl::planner::MotionControl motion = ssl::planner::MotionControl::kSimple;
   for (int i = 1; i < argc; ++i) {
     const auto value = [&](const char* flag) -> const char* {
       if (i + 1 >= argc) {
@@ -73,10 +88,11 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     if (std::strcmp(argv[i], "--help") == 0) {
-      std::printf("usage: match_lockstep [--half S] [--seed N] [--robots 6|11|both]\n"
+      std::printf("usage: match_lockstep [--half S] [--seed N] [--robots 6|11|both] [--motion simple|trajectory]\n"
                   "  plays whole matches (two halves of S s of playing time, default 300, the built-in referee's\n"
                   "  simulation profile) of 6 v 6 (division B) and 11 v 11 (division A) in lockstep and prints the\n"
-                  "  real-time factors and each match's report\n");
+                  "  real-time factors, the closest two robots came and each match's report; --motion: both\n"
+                  "  teams' skill layer (default simple)\n");
       return 0;
     }
     if (std::strcmp(argv[i], "--half") == 0) {
@@ -105,14 +121,24 @@ int main(int argc, char** argv) {
       }
       continue;
     }
+    if (std::strcmp(argv[i], "--motion") == 0) {
+      const std::string name = value("--motion");
+      if (name != "simple" && name != "trajectory") {
+        std::fprintf(stderr, "match_lockstep: --motion takes simple or trajectory\n");
+        return 2;
+      }
+      motion = name == "simple" ? ssl::planner::MotionControl::kSimple : ssl::planner::MotionControl::kTrajectory;
+      continue;
+    }
     std::fprintf(stderr, "match_lockstep: unknown argument '%s' (see --help)\n", argv[i]);
     return 2;
   }
   std::printf("whole matches in lockstep, one process (simulator + 2 x (world model + planner) + built-in referee "
-              "'simulation'), halves of %.0f s, seed %llu\n\n", half, static_cast<unsigned long long>(seed));
+              "'simulation'), halves of %.0f s, seed %llu, %s motion\n\n", half, static_cast<unsigned long long>(seed),
+              motion == ssl::planner::MotionControl::kSimple ? "simple" : "trajectory");
   if (robots != "11") {
-    print("6 v 6 division B", play(ssl::sim::FieldGeometry::division_b(), 6, half, seed), " (budget >= 20x)");
+    print("6 v 6 division B", play(ssl::sim::FieldGeometry::division_b(), 6, half, seed, motion), " (budget >= 20x)");
   }
-  if (robots != "6") print("11 v 11 division A", play(ssl::sim::FieldGeometry::division_a(), 11, half, seed), "");
+  if (robots != "6") print("11 v 11 division A", play(ssl::sim::FieldGeometry::division_a(), 11, half, seed, motion), "");
   return 0;
 }

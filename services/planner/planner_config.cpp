@@ -21,6 +21,9 @@ Fields<MotionLimits> limit_fields() {
 Fields<PlannerConfig> core_fields() {
   return Fields<PlannerConfig>{
       nested("limits", &PlannerConfig::limits, limit_fields()),
+      field("motion", &PlannerConfig::motion)
+          .values({{"simple", MotionControl::kSimple}, {"trajectory", MotionControl::kTrajectory}})
+          .doc("skill layer: simple (proportional, local detours) or trajectory (time-optimal, path search)"),
       field("robot_radius", &PlannerConfig::robot_radius).unit("m").range(0.05, 0.2),
       field("stop_speed", &PlannerConfig::stop_speed).unit("m/s").range(0.1, rules::kStopMaxSpeed)
           .doc("the rules' limit during STOP or below"),

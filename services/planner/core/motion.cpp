@@ -176,7 +176,8 @@ RobotCommand SimpleMotionPlanner::plan(const wm::RobotState& robot, const Motion
       // robot standing on our target is not gone around.
       std::optional<Vec2> around_robot;
       double nearest = kRobotLookAhead;
-      for (const Vec2& other : zones.robots) {
+      for (const ZoneRobot& zone_robot : zones.robots) {
+        const Vec2& other = zone_robot.position;
         const double distance = (other - p).norm();
         if (distance < 1e-3 || distance >= nearest || (other - target).norm() < kRobotClearance) continue;
         if (auto d = detour(p, dir, std::min(dist, kRobotLookAhead), other, kRobotClearance)) {

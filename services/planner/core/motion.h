@@ -45,6 +45,14 @@ struct MotionIntent {
   std::string_view skill = "move_to";
 };
 
+/// A visible robot as the skill layer sees it (TEAM frame).
+struct ZoneRobot {
+  std::uint32_t id = 0;
+  bool ours = false;
+  Vec2 position = Vec2::Zero();  // m
+  Vec2 velocity = Vec2::Zero();  // m/s
+};
+
 /// Where robots must not go this tick (TEAM frame), as the rules and the current command say.
 struct Zones {
   wm::Field field = wm::Field();
@@ -54,7 +62,7 @@ struct Zones {
   double our_defense_margin = 0.1;       // m, robot centre distance from our defense area (non-keepers)
   double field_margin = 0.05;            // m, how far beyond the field lines a centre may go
   double wall_margin = 0.11;             // m, robot centre from the walls when it may enter the boundary
-  std::vector<Vec2> robots;              // every visible robot, ours and theirs (the planned one included)
+  std::vector<ZoneRobot> robots;         // every visible robot, ours and theirs (the planned one included)
 };
 
 /// `p` moved (minimally, a few passes) out of every zone the intent asks to avoid and into the field.
@@ -71,6 +79,9 @@ class MotionPlanner {
 
   /// What was finally sent after the rule layer (team frame), so that acceleration limits start from it.
   virtual void sent(std::uint32_t /*id*/, const Vec2& /*velocity*/, double /*angular*/) {}
+
+  /// Called once per tick before the first plan(): robots are then planned in priority order.
+  virtual void begin_tick() {}
 };
 
 /// Planner I's controller. Keeps the last sent velocity per robot id (0..15) for acceleration limiting.

@@ -8,6 +8,7 @@
 #include "services/planner/core/motion.h"
 #include "services/planner/core/plays.h"
 #include "services/planner/core/rules.h"
+#include "services/planner/core/trajectory_motion.h"
 #include "libs/domain/game_state.h"
 #include "libs/domain/keep_out.h"
 #include "libs/domain/team_frame.h"
@@ -203,6 +204,15 @@ TreeNodeInfo::Status to_info(bt::NodeStatus status) {
   return TreeNodeInfo::Status::kIdle;
 }
 
+std::unique_ptr<MotionPlanner> make_motion_planner(const PlannerConfig& config) {
+  if (config.motion == MotionControl::kTrajectory) {
+    TrajectoryMotionParams params;
+    params.robot_radius = config.robot_radius;
+    return std::make_unique<TrajectoryMotionPlanner>(config.limits, params);
+  }
+  return std::make_unique<SimpleMotionPlanner>(config.limits);
+}
+
 }  // namespace
 
 struct Planner::Impl {
@@ -210,8 +220,7 @@ struct Planner::Impl {
       : config(cfg),
         game(cfg.team),
         memory(cfg.role_hysteresis),
-        motion(motion_planner ? std::move(motion_planner)
-                              : std::make_unique<SimpleMotionPlanner>(cfg.limits)),
+        motion(motion_planner ? std::move(motion_planner) : make_motion_planner(cfg)),
         tree(bt::reactive_selector("Root", {referee_override(), base_strategy()})) {
     robots.reserve(wm::kMaxRobotsPerTeam);
     enemies.reserve(wm::kMaxRobotsPerTeam);
@@ -288,8 +297,12 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
       config.defense_area_keep_away + config.robot_radius + config.keep_away_margin;
   s.zones.our_defense_margin = config.robot_radius + 0.05;
   s.zones.robots.clear();
-  for (const wm::RobotState& robot : robots) s.zones.robots.push_back(robot.position);
-  for (const wm::RobotState& robot : enemies) s.zones.robots.push_back(robot.position);
+  for (const wm::RobotState& robot : robots) {
+    s.zones.robots.push_back({.id = robot.id, .ours = true, .position = robot.position, .velocity = robot.velocity});
+  }
+  for (const wm::RobotState& robot : enemies) {
+    s.zones.robots.push_back({.id = robot.id, .ours = false, .position = robot.position, .velocity = robot.velocity});
+  }
 
   // Inputs, a fresh intent table, tick.
   bt::Blackboard& board = tree.blackboard();
@@ -307,6 +320,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   const RuleLimits limits = rule_limits(game, config, s.can_place_ball, placer);
   out.commands.resize(robots.size());
   out.roles.resize(robots.size());
+  motion->begin_tick();
   for (std::size_t i = 0; i < robots.size(); ++i) {
     const wm::RobotState& robot = robots[i];
     const MotionIntent& intent = intents.robots[robot.id];

@@ -87,9 +87,14 @@ struct MotionLimits {
   double max_angular_acceleration = 30;  // rad/s^2
 };
 
+/// The skill layer: planner I's proportional controller with local detours, or planner II's trajectories
+/// along a searched path (trajectory_motion.h).
+enum class MotionControl { kSimple, kTrajectory };
+
 struct PlannerConfig {
   TeamColor team = TeamColor::kBlue;
   MotionLimits limits;
+  MotionControl motion = MotionControl::kSimple;
   double tick_period = 1.0 / 100;      // s, nominal (used for acceleration limiting)
   double robot_radius = 0.09;          // m
   double stop_speed = rules::kStopMaxSpeed;  // m/s during STOP (a margin is applied below it)

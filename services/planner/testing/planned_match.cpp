@@ -8,9 +8,10 @@
 namespace ssl::planner::testing {
 namespace {
 
-PlannerConfig planner_config(TeamColor team, const sim::FieldGeometry& field) {
+PlannerConfig planner_config(TeamColor team, const sim::FieldGeometry& field, MotionControl motion) {
   PlannerConfig config;
   config.team = team;
+  config.motion = motion;
   config.default_field = field;
   return config;
 }
@@ -44,8 +45,8 @@ PlannedMatch::PlannedMatch(const PlannedMatchOptions& options)
       start_(harness_.now()),
       next_tick_(harness_.now()) {
   yellow_model_.on_geometry(wm::testing::from_sim(harness_.sim().geometry()));
-  teams_.push_back({TeamColor::kBlue, Planner(planner_config(TeamColor::kBlue, options.field)), {}});
-  teams_.push_back({TeamColor::kYellow, Planner(planner_config(TeamColor::kYellow, options.field)), {}});
+  teams_.push_back({TeamColor::kBlue, Planner(planner_config(TeamColor::kBlue, options.field, options.motion)), {}});
+  teams_.push_back({TeamColor::kYellow, Planner(planner_config(TeamColor::kYellow, options.field, options.motion)), {}});
   scripted_.blue_team_on_positive_half = options.blue_on_positive_half;
 }
 

@@ -1,0 +1,109 @@
+#include "services/planner/core/trajectory_motion.h"
+
+#include <algorithm>
+
+#include "libs/domain/keep_out.h"
+
+namespace ssl::planner {
+namespace {
+
+constexpr double kDribblerRpm = 3000;
+constexpr double kChipAngle = 0.6;              // rad
+constexpr double kDefenseZoneBehindGoal = 1.0;  // m, as the simple controller's zones
+constexpr double kArrived = 0.005;              // m: closer to the target than this, at rest, is there
+
+}  // namespace
+
+TrajectoryMotionPlanner::TrajectoryMotionPlanner(const MotionLimits& limits, const TrajectoryMotionParams& params)
+    : limits_(limits), params_(params) {}
+
+void TrajectoryMotionPlanner::sent(std::uint32_t id, const Vec2& velocity, double angular) {
+  if (id >= memory_.size()) return;
+  memory_[id].velocity = velocity;
+  memory_[id].angular = angular;
+}
+
+void TrajectoryMotionPlanner::begin_tick() {
+  for (Memory& memory : memory_) {
+    if (memory.planned_this_tick) {
+      memory.previous = memory.planned ? std::optional<TrajectoryPath>(memory.planned->path) : std::nullopt;
+    } else {
+      memory.previous.reset();
+      memory.planned.reset();
+    }
+    memory.planned_this_tick = false;
+  }
+}
+
+PathObstacles TrajectoryMotionPlanner::obstacles_for(const wm::RobotState& robot, const MotionIntent& intent,
+                                                     const Zones& zones) const {
+  PathObstacles obstacles;
+  const double touching = 2 * params_.robot_radius;
+  const double our_speed = memory_[robot.id].velocity.norm();
+  for (const ZoneRobot& other : zones.robots) {
+    if (other.ours && other.id == robot.id) continue;
+    if (other.ours) {
+      const Memory& planned = memory_.at(std::min<std::size_t>(other.id, memory_.size() - 1));
+      if (other.id < memory_.size() && planned.planned_this_tick && planned.planned) {
+        obstacles.paths.push_back({.path = planned.planned->path, .radius = touching + params_.our_margin});
+        continue;
+      }
+      obstacles.circles.push_back(
+          {.position = other.position, .velocity = other.velocity, .radius = touching + params_.our_margin});
+      continue;
+    }
+    obstacles.circles.push_back({.position = other.position,
+                                 .velocity = other.velocity,
+                                 .radius = touching + params_.their_margin +
+                                           params_.their_margin_per_speed * our_speed});
+  }
+  const FieldGeometry& field = zones.field.size();
+  if (intent.avoid_their_defense_area) {
+    obstacles.rectangles.push_back(defense_area_keep_out(field, +1, zones.their_defense_margin, kDefenseZoneBehindGoal));
+  }
+  if (intent.avoid_our_defense_area) {
+    obstacles.rectangles.push_back(defense_area_keep_out(field, -1, zones.our_defense_margin, kDefenseZoneBehindGoal));
+  }
+  if (intent.avoid_placement_corridor && zones.placement_corridor) obstacles.stadiums.push_back(*zones.placement_corridor);
+  if (intent.avoid_ball_radius > 0 && zones.ball) {
+    obstacles.circles.push_back({.position = *zones.ball, .radius = intent.avoid_ball_radius});
+  }
+  const double beyond = intent.may_enter_boundary ? field.boundary_width - zones.wall_margin : zones.field_margin;
+  obstacles.bounds = geom::Rectangle::from_center(Vec2::Zero(), field.field_length + 2 * beyond,
+                                                  field.field_width + 2 * beyond);
+  return obstacles;
+}
+
+RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const MotionIntent& intent,
+                                           const Zones& zones, double dt) {
+  RobotCommand command;
+  command.id = robot.id;
+  if (robot.id >= memory_.size()) return command;
+  Memory& memory = memory_[robot.id];
+  memory.planned_this_tick = true;
+  if (!intent.active || intent.halt) {
+    memory = Memory{.planned_this_tick = true};
+    return command;
+  }
+  const Vec2 target = project_out(intent.target, intent, zones);
+  const TrajectoryLimits limits{.max_speed = std::min(intent.max_speed, limits_.max_speed),
+                                .max_acceleration = limits_.max_acceleration};
+  const PathObstacles obstacles = obstacles_for(robot, intent, zones);
+  memory.planned = search_path(robot.position, memory.velocity, target, limits, obstacles, params_.search,
+                               memory.previous ? &*memory.previous : nullptr);
+  const TrajectoryPath& path = memory.planned->path;
+  Vec2 velocity = path.velocity(dt);
+  if ((target - robot.position).norm() < kArrived && velocity.norm() < 0.05) velocity = Vec2::Zero();
+
+  const Trajectory1D turn =
+      plan_rotation(robot.orientation, memory.angular, intent.orientation,
+                    {.max_speed = limits_.max_angular_speed, .max_acceleration = limits_.max_angular_acceleration});
+  command = to_local(robot.id, velocity, turn.velocity(dt), robot.orientation);
+  command.dribbler_rpm = intent.dribble ? kDribblerRpm : 0;
+  command.kick = intent.kick;
+  command.kick_speed = intent.kick == KickType::kNone ? 0 : intent.kick_speed;
+  command.chip_angle = intent.kick == KickType::kChip ? kChipAngle : 0;
+  return command;
+}
+
+}  // namespace ssl::planner
