@@ -12,7 +12,8 @@
 //    their new halves for the second half's kickoff (its NORMAL_START came because they were in position);
 //  * at most 2 no-progress restarts per half;
 //  * the match ends with the final whistle (POST_GAME).
-// MATCH_TEST_SEED=n plays another seed; MATCH_TEST_VERBOSE=1 prints every referee command as it comes.
+// MATCH_TEST_SEED=n plays another seed; MATCH_TEST_VERBOSE=1 prints every referee command as it comes;
+// MATCH_TEST_MOTION=simple|trajectory picks both teams' skill layer (default: the planner config's).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -42,6 +43,12 @@ constexpr std::uint64_t kDefaultSeed = 20261125;
 std::uint64_t seed() {
   const char* env = std::getenv("MATCH_TEST_SEED");
   return env && *env ? std::strtoull(env, nullptr, 10) : kDefaultSeed;
+}
+planner::MotionControl motion() {
+  const char* env = std::getenv("MATCH_TEST_MOTION");
+  if (env && std::string(env) == "simple") return planner::MotionControl::kSimple;
+  if (env && std::string(env) == "trajectory") return planner::MotionControl::kTrajectory;
+  return planner::PlannerConfig().motion;
 }
 bool verbose() {
   const char* env = std::getenv("MATCH_TEST_VERBOSE");
@@ -91,7 +98,8 @@ const MatchRecord& played_match() {
     profile->game.half_duration = kHalfDuration;
     profile->game.half_time = kHalfTime;
     planner::testing::PlannedMatch match(
-        {.field = sim::FieldGeometry::division_b(), .robots = 6, .seed = seed(), .referee = *profile});
+        {.field = sim::FieldGeometry::division_b(), .robots = 6, .seed = seed(), .referee = *profile,
+         .motion = motion()});
     match.start_match();
     const time::Timestamp start = match.start();
     std::uint32_t last_counter = 0;

@@ -14,31 +14,62 @@ namespace {
 
 using geom::Vec2;
 
-/// Which obstacles the robot stands in at the start (in the order circles, paths, rectangles, stadiums,
-/// bounds): those count only once the path has left them.
-struct StartInside {
-  std::vector<char> inside;
+/// The obstacles as the sweep uses them, prepared once per search: static shapes grown by the chord
+/// margin, and our planned robots' positions on the step grid (every candidate is swept on the same grid).
+struct Prepared {
+  const PathObstacles* obstacles = nullptr;
+  double step = 0;
+  double horizon = 0;
+  double margin = 0;
+  std::vector<geom::Rectangle> rectangles;
+  std::vector<geom::Stadium> stadiums;
+  std::vector<std::vector<Vec2>> path_positions;  // [obstacle][k]: at k * step
+  std::vector<char> inside_at_start;              // circles, paths, rectangles, stadiums, bounds
+
+  Vec2 path_position(std::size_t obstacle, double t) const {
+    const auto k = static_cast<std::size_t>(std::lround(t / step));
+    const std::vector<Vec2>& grid = path_positions[obstacle];
+    if (k < grid.size() && std::abs(t - k * step) < 1e-9) return grid[k];
+    return obstacles->paths[obstacle].path.position(t);
+  }
 };
 
-StartInside inside_at_start(const Vec2& p, const PathObstacles& obstacles) {
-  StartInside start;
-  start.inside.reserve(obstacles.circles.size() + obstacles.paths.size() + obstacles.rectangles.size() +
-                       obstacles.stadiums.size() + 1);
-  for (const MovingCircle& c : obstacles.circles) start.inside.push_back((p - c.position).norm() < c.radius);
-  for (const PathCircle& c : obstacles.paths) start.inside.push_back((p - c.path.position(0)).norm() < c.radius);
-  for (const geom::Rectangle& r : obstacles.rectangles) start.inside.push_back(r.contains(p));
-  for (const geom::Stadium& s : obstacles.stadiums) start.inside.push_back(geom::contains(s, p));
-  start.inside.push_back(obstacles.bounds && !obstacles.bounds->contains(p));
-  return start;
+Prepared prepare(const Vec2& start, const PathObstacles& obstacles, double step, double horizon, double margin) {
+  Prepared prepared{.obstacles = &obstacles, .step = step, .horizon = horizon, .margin = margin};
+  for (const geom::Rectangle& r : obstacles.rectangles) prepared.rectangles.push_back(r.expanded(margin));
+  for (const geom::Stadium& s : obstacles.stadiums) prepared.stadiums.push_back({s.spine, s.radius + margin});
+  const auto steps = static_cast<std::size_t>(std::ceil(horizon / step)) + 1;
+  for (const PathCircle& c : obstacles.paths) {
+    std::vector<Vec2>& grid = prepared.path_positions.emplace_back();
+    grid.reserve(steps);
+    for (std::size_t k = 0; k < steps; ++k) grid.push_back(c.path.position(k * step));
+  }
+  std::vector<char>& inside = prepared.inside_at_start;
+  inside.reserve(obstacles.circles.size() + obstacles.paths.size() + obstacles.rectangles.size() +
+                 obstacles.stadiums.size() + 1);
+  for (const MovingCircle& c : obstacles.circles) inside.push_back((start - c.position).norm() < c.radius);
+  for (const PathCircle& c : obstacles.paths) inside.push_back((start - c.path.position(0)).norm() < c.radius);
+  for (const geom::Rectangle& r : obstacles.rectangles) inside.push_back(r.contains(start));
+  for (const geom::Stadium& st : obstacles.stadiums) inside.push_back(geom::contains(st, start));
+  inside.push_back(obstacles.bounds && !obstacles.bounds->contains(start));
+  return prepared;
 }
 
-/// The sweep of one candidate; `inside` is consumed (cleared per obstacle once the path has left it).
-std::optional<double> sweep(const TrajectoryPath& path, const PathObstacles& obstacles, double step,
-                            double horizon, double margin, std::vector<char>& inside) {
-  const double end = std::min(horizon, path.duration());
+/// Whether the boxes around a short segment and a rectangle overlap (cheap; the exact test follows).
+bool boxes_overlap(const Vec2& a, const Vec2& b, const geom::Rectangle& r) {
+  return std::max(a.x(), b.x()) >= r.min().x() && std::min(a.x(), b.x()) <= r.max().x() &&
+         std::max(a.y(), b.y()) >= r.min().y() && std::min(a.y(), b.y()) <= r.max().y();
+}
+
+/// The sweep of one candidate; `inside` (a copy of inside_at_start) is cleared per obstacle once the path
+/// has left it.
+std::optional<double> sweep(const TrajectoryPath& path, const Prepared& prepared, std::vector<char>& inside) {
+  const PathObstacles& obstacles = *prepared.obstacles;
+  const double end = std::min(prepared.horizon, path.duration());
+  const double margin = prepared.margin;
   Vec2 p0 = path.position(0);
-  for (double t0 = 0; t0 < end; t0 += step) {
-    const double t1 = std::min(t0 + step, end);
+  for (double t0 = 0; t0 < end; t0 += prepared.step) {
+    const double t1 = std::min(t0 + prepared.step, end);
     const Vec2 p1 = path.position(t1);
     std::size_t index = 0;
     // Each obstacle: while the robot is still in the one it started in, only watch for it leaving.
@@ -58,20 +89,25 @@ std::optional<double> sweep(const TrajectoryPath& path, const PathObstacles& obs
         return t0;
       }
     }
-    for (const PathCircle& c : obstacles.paths) {
-      const Vec2 a = p0 - c.path.position(t0);
-      const Vec2 b = p1 - c.path.position(t1);
-      if (check(geom::intersects(geom::Segment{a, b}, geom::Circle{Vec2::Zero(), c.radius + margin}),
-                b.norm() >= c.radius)) {
+    for (std::size_t i = 0; i < obstacles.paths.size(); ++i) {
+      const double radius = obstacles.paths[i].radius;
+      const Vec2 a = p0 - prepared.path_position(i, t0);
+      const Vec2 b = p1 - prepared.path_position(i, t1);
+      if (check(geom::intersects(geom::Segment{a, b}, geom::Circle{Vec2::Zero(), radius + margin}),
+                b.norm() >= radius)) {
         return t0;
       }
     }
     const geom::Segment moved{p0, p1};
-    for (const geom::Rectangle& r : obstacles.rectangles) {
-      if (check(geom::intersects(moved, r.expanded(margin)), !r.contains(p1))) return t0;
+    for (std::size_t i = 0; i < prepared.rectangles.size(); ++i) {
+      const geom::Rectangle& grown = prepared.rectangles[i];
+      const bool hit = boxes_overlap(p0, p1, grown) && geom::intersects(moved, grown);
+      if (check(hit, !obstacles.rectangles[i].contains(p1))) return t0;
     }
-    for (const geom::Stadium& s : obstacles.stadiums) {
-      if (check(geom::intersects(moved, geom::Stadium{s.spine, s.radius + margin}), !geom::contains(s, p1))) return t0;
+    for (std::size_t i = 0; i < prepared.stadiums.size(); ++i) {
+      if (check(geom::intersects(moved, prepared.stadiums[i]), !geom::contains(obstacles.stadiums[i], p1))) {
+        return t0;
+      }
     }
     if (obstacles.bounds) {
       const bool in_bounds = obstacles.bounds->contains(p1);
@@ -82,9 +118,13 @@ std::optional<double> sweep(const TrajectoryPath& path, const PathObstacles& obs
   return std::nullopt;
 }
 
+/// Sub-destinations closer to the robot than this (m) are not tried.
+constexpr double kMinViaDistance = 0.15;
+
 double score_of(double duration, const std::optional<double>& collision, const PathSearchParams& params) {
   if (!collision) return duration;
-  return duration + params.collision_penalty + params.early_collision_weight * (params.horizon - *collision);
+  return duration + params.collision_penalty +
+         params.early_collision_weight * std::max(0.0, params.near_collision - *collision);
 }
 
 }  // namespace
@@ -101,16 +141,17 @@ Vec2 TrajectoryPath::velocity(double t) const {
 
 std::optional<double> first_collision(const TrajectoryPath& path, const PathObstacles& obstacles, double step,
                                       double horizon, double margin) {
-  StartInside start = inside_at_start(path.position(0), obstacles);
-  return sweep(path, obstacles, step, horizon, margin, start.inside);
+  const Prepared prepared = prepare(path.position(0), obstacles, step, horizon, margin);
+  std::vector<char> inside = prepared.inside_at_start;
+  return sweep(path, prepared, inside);
 }
 
 PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& destination,
                        const TrajectoryLimits& limits, const PathObstacles& obstacles,
                        const PathSearchParams& params, const TrajectoryPath* previous) {
-  const StartInside start = inside_at_start(position, obstacles);
   // Between two checks the robot's curve stays within a * step^2 / 8 of the chord that is checked.
   const double chord_margin = limits.max_acceleration * params.step * params.step / 8;
+  const Prepared prepared = prepare(position, obstacles, params.step, params.horizon, chord_margin);
   std::vector<char> inside;
   PathResult best;
   bool have_best = false;
@@ -120,9 +161,8 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
     const double bonus = is_previous ? params.keep_previous_margin : 0.0;
     // Arrival time is a lower bound of the score: no sweep needed for a path that cannot win.
     if (have_best && candidate.duration() - bonus >= best_rank) return;
-    inside = start.inside;
-    const std::optional<double> collision =
-        sweep(candidate, obstacles, params.step, params.horizon, chord_margin, inside);
+    inside = prepared.inside_at_start;
+    const std::optional<double> collision = sweep(candidate, prepared, inside);
     const double score = score_of(candidate.duration(), collision, params);
     if (!have_best || score - bonus < best_rank) {
       best.path = candidate;
@@ -134,6 +174,9 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
   };
   const auto through = [&](const Vec2& via, bool is_previous) {
     if (obstacles.bounds && !obstacles.bounds->contains(via)) return;
+    // A sub-destination the robot is already at is no detour: the path would stop there first, and kept
+    // from tick to tick it would never leave.
+    if ((via - position).norm() < kMinViaDistance) return;
     const Trajectory2D first = Trajectory2D::plan(position, velocity, via, limits);
     for (const double switch_time : params.switch_times) {
       if (switch_time >= first.duration()) {

@@ -6,7 +6,7 @@
 // the current state through the same sub-destination), so plans do not flicker. Each candidate is swept
 // in fixed time steps against every obstacle: between two steps the robot's move relative to a (moving)
 // obstacle is a segment, so a fast robot cannot jump over one. Score = arrival time, plus, when the path
-// collides, a penalty that is larger the sooner the first collision comes. An obstacle the robot stands
+// collides, a penalty that is larger the sooner the first collision comes (see PathSearchParams). An obstacle the robot stands
 // in at the start counts only once the path has left it (leaving it is always allowed).
 //
 // Everything is in one frame (the planner's team frame), metres and seconds from now. Pure: no clocks.
@@ -72,12 +72,18 @@ struct PathObstacles {
 
 struct PathSearchParams {
   int directions = 16;                              // sub-destinations on each ring
-  std::vector<double> radii = {0.4, 0.8, 1.4, 2.2};  // m, rings around the robot
+  std::vector<double> radii = {0.5, 1.0, 2.0};  // m, rings around the robot
   std::vector<double> switch_times = {0.2, 0.5};    // s along the first trajectory
   double step = 0.1;  // s between collision checks (swept chords; obstacles grown by a * step^2 / 8 to cover the curve)
   double horizon = 3.0;                             // s: collisions later than this are not looked for
-  double collision_penalty = 100.0;                 // s added to a colliding path's score: any free path wins
-  double early_collision_weight = 5.0;              // s added per second of the horizon left at the collision
+  // A colliding path's score grows by collision_penalty, plus early_collision_weight per second by which
+  // its first collision comes sooner than near_collision. A near collision is certain and is avoided at
+  // almost any price; a far one may well not happen (the obstacle moves, the next ticks re-plan, and the
+  // sub-destinations near the robot cannot go round it yet), so among those the quickest path wins rather
+  // than one that only puts the collision off.
+  double collision_penalty = 1.0;       // s
+  double near_collision = 1.0;          // s
+  double early_collision_weight = 5.0;  // s per s
   double keep_previous_margin = 0.1;                // s another path must win by to replace last tick's
 };
 

@@ -116,9 +116,8 @@ TEST(PathSearch, LastTicksDetourIsKeptWhenAnotherIsOnlyAsGood) {
 }
 
 TEST(PathSearch, RandomScenesGetPathsThatAreFreeWhenCheckedEveryMillisecond) {
-  // Static and moving robots between start and destination, 10,000 seeds: a path the search calls free
-  // (any free candidate beats every colliding one, see collision_penalty) is free when checked every
-  // millisecond, and nearly every scene has one.
+  // Static and moving robots between start and destination, 10,000 seeds: a path the search calls free is
+  // free when checked every millisecond, and nearly every scene has one.
   const PathSearchParams params;
   int free_found = 0;
   for (std::uint32_t seed = 0; seed < 10000; ++seed) {

@@ -11,7 +11,7 @@ double sign_of(double value) { return value < 0 ? -1.0 : 1.0; }
 
 /// Bisection steps on the share of the limits between x and y (each halves the remaining angle range).
 constexpr int kSyncIterations = 30;
-/// The first bracket around the guessed share of the limits (rad), doubled until it holds the answer.
+/// The first bracket around the guessed share of the limits, doubled until it holds the answer.
 constexpr double kBracketStep = 0.05;
 /// Durations closer than this (s) count as synchronised.
 constexpr double kSyncTolerance = 1e-3;
@@ -91,48 +91,67 @@ double Trajectory1D::acceleration(double t) const { return at(t).a; }
 
 Trajectory2D Trajectory2D::plan(const geom::Vec2& p0, const geom::Vec2& v0, const geom::Vec2& target,
                                 const TrajectoryLimits& limits) {
-  const auto share = [&](double angle, Trajectory1D& x, Trajectory1D& y) {
-    const double c = std::cos(angle);
-    const double s = std::sin(angle);
-    x = Trajectory1D::plan(p0.x(), v0.x(), target.x(),
-                           {.max_speed = limits.max_speed * c, .max_acceleration = limits.max_acceleration * c});
-    y = Trajectory1D::plan(p0.y(), v0.y(), target.y(),
-                           {.max_speed = limits.max_speed * s, .max_acceleration = limits.max_acceleration * s});
-  };
-  // x's duration grows with the angle (its share shrinks), y's falls: find where they are equal. From rest
-  // the answer is the direction to the target; moving, it is near it: bracket around it, then bisect.
+  // The limits go to the axes as the components of a unit vector (c, s): y gets the share s, x the share
+  // c = sqrt(1 - s^2). x's duration grows with s, y's falls: find where they are equal. From rest the
+  // answer is the direction to the target; moving, it is near it: bracket around it, then bisect.
   constexpr double kMin = 1e-6;
-  constexpr double kMax = 0.5 * std::numbers::pi - 1e-6;
+  constexpr double kMax = 1 - 1e-6;
   Trajectory2D out;
-  const auto difference = [&](double angle) {
-    share(angle, out.x_, out.y_);
+  const auto difference = [&](double share) {
+    const double c = std::sqrt(1 - share * share);
+    out.x_ = Trajectory1D::plan(p0.x(), v0.x(), target.x(),
+                                {.max_speed = limits.max_speed * c, .max_acceleration = limits.max_acceleration * c});
+    out.y_ = Trajectory1D::plan(p0.y(), v0.y(), target.y(),
+                                {.max_speed = limits.max_speed * share,
+                                 .max_acceleration = limits.max_acceleration * share});
     return out.x_.duration() - out.y_.duration();
   };
-  const geom::Vec2 distance = (target - p0).cwiseAbs();
-  const double guess = std::clamp(std::atan2(distance.y(), distance.x()), kMin, kMax);
+  const geom::Vec2 distance = target - p0;
+  const double length = distance.norm();
+  const double guess = std::clamp(length > 0 ? std::abs(distance.y()) / length : 0.5, kMin, kMax);
   const double at_guess = difference(guess);
   if (std::abs(at_guess) >= kSyncTolerance) {
     double low = guess;
     double high = guess;
+    double f_low = at_guess;
+    double f_high = at_guess;
     double width = kBracketStep;
-    if (at_guess > 0) {  // x too slow: give it more (a smaller angle)
+    if (at_guess > 0) {  // x too slow: give it more (a smaller share for y)
       do {
         high = low;
+        f_high = f_low;
         low = std::max(kMin, guess - width);
+        f_low = difference(low);
         width *= 2;
-      } while (low > kMin && difference(low) > 0);
+      } while (low > kMin && f_low > 0);
     } else {
       do {
         low = high;
+        f_low = f_high;
         high = std::min(kMax, guess + width);
+        f_high = difference(high);
         width *= 2;
-      } while (high < kMax && difference(high) < 0);
+      } while (high < kMax && f_high < 0);
     }
+    // Regula falsi with the Illinois step (the retained end's value halved when it is kept twice), falling
+    // back to bisection when the bracket does not hold a sign change (an axis that needs no time at all).
+    int kept = 0;
     for (int i = 0; i < kSyncIterations; ++i) {
-      const double mid = 0.5 * (low + high);
+      const bool bracketed = f_low < 0 && f_high > 0;
+      const double mid = bracketed ? (low * f_high - high * f_low) / (f_high - f_low) : 0.5 * (low + high);
       const double at_mid = difference(mid);
       if (std::abs(at_mid) < kSyncTolerance) break;
-      (at_mid > 0 ? high : low) = mid;
+      if (at_mid > 0) {
+        high = mid;
+        f_high = at_mid;
+        if (kept > 0) f_low *= 0.5;
+        kept = kept > 0 ? kept + 1 : 1;
+      } else {
+        low = mid;
+        f_low = at_mid;
+        if (kept < 0) f_high *= 0.5;
+        kept = kept < 0 ? kept - 1 : -1;
+      }
     }
   }
   out.duration_ = std::max(out.x_.duration(), out.y_.duration());

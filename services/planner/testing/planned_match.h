@@ -38,7 +38,7 @@ struct PlannedMatchOptions {
   bool blue_on_positive_half = kBlueOnPositiveHalfAtStart;  // at the start (the built-in referee swaps it)
   /// With a profile, the built-in referee runs the match and script() is not used.
   std::optional<referee::RefereeProfile> referee;
-  MotionControl motion = MotionControl::kSimple;  // both teams' skill layer
+  MotionControl motion = PlannerConfig().motion;  // both teams' skill layer
 };
 
 /// A referee command issued `at` seconds after the start.
