@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "libs/geometry/circle.h"
@@ -26,10 +27,10 @@ struct Prepared {
   std::vector<std::vector<Vec2>> path_positions;  // [obstacle][k]: at k * step
   std::vector<char> inside_at_start;              // circles, paths, rectangles, stadiums, bounds
 
-  Vec2 path_position(std::size_t obstacle, double t) const {
-    const auto k = static_cast<std::size_t>(std::lround(t / step));
+  /// Our planned robot `obstacle` at step k of a sweep (time t: k * step, or the path's end).
+  Vec2 path_position(std::size_t obstacle, std::size_t k, double t) const {
     const std::vector<Vec2>& grid = path_positions[obstacle];
-    if (k < grid.size() && std::abs(t - k * step) < 1e-9) return grid[k];
+    if (k < grid.size() && std::abs(t - static_cast<double>(k) * step) < 1e-9) return grid[k];
     return obstacles->paths[obstacle].path.position(t);
   }
 };
@@ -61,61 +62,104 @@ bool boxes_overlap(const Vec2& a, const Vec2& b, const geom::Rectangle& r) {
          std::max(a.y(), b.y()) >= r.min().y() && std::min(a.y(), b.y()) <= r.max().y();
 }
 
-/// The sweep of one candidate; `inside` (a copy of inside_at_start) is cleared per obstacle once the path
-/// has left it.
-std::optional<double> sweep(const TrajectoryPath& path, const Prepared& prepared, std::vector<char>& inside) {
+/// The first step (its start time) at which `hit(k)` holds, for steps k = 0.. whose start lies before
+/// `before`; `escaping`: the robot starts inside, so steps count only once `left(k)` said it is out.
+template <typename Hit, typename Left>
+std::optional<double> first_hit(std::size_t steps, const std::vector<double>& times, double before, char escaping,
+                                const Hit& hit, const Left& left) {
+  for (std::size_t k = 0; k < steps && times[k] < before; ++k) {
+    if (escaping) {
+      if (left(k)) escaping = 0;
+      continue;
+    }
+    if (hit(k)) return times[k];
+  }
+  return std::nullopt;
+}
+
+/// The sweep of one candidate: for each obstacle the first step at which the robot's chord comes into it
+/// (obstacles it starts in count once it has left them); the earliest over all obstacles. Obstacles whose
+/// box over the horizon misses the box of the whole path are skipped.
+std::optional<double> sweep(const TrajectoryPath& path, const Prepared& prepared, std::vector<Vec2>& points,
+                            std::vector<double>& times) {
   const PathObstacles& obstacles = *prepared.obstacles;
   const double end = std::min(prepared.horizon, path.duration());
   const double margin = prepared.margin;
-  Vec2 p0 = path.position(0);
-  for (double t0 = 0; t0 < end; t0 += prepared.step) {
-    const double t1 = std::min(t0 + prepared.step, end);
-    const Vec2 p1 = path.position(t1);
-    std::size_t index = 0;
-    // Each obstacle: while the robot is still in the one it started in, only watch for it leaving.
-    const auto check = [&](bool hit_now, bool outside_at_end) {
-      char& escaping = inside[index++];
-      if (escaping) {
-        if (outside_at_end) escaping = 0;
-        return false;
-      }
-      return hit_now;
-    };
-    for (const MovingCircle& c : obstacles.circles) {
-      const Vec2 a = p0 - (c.position + c.velocity * t0);
-      const Vec2 b = p1 - (c.position + c.velocity * t1);
-      if (check(geom::intersects(geom::Segment{a, b}, geom::Circle{Vec2::Zero(), c.radius + margin}),
-                b.norm() >= c.radius)) {
-        return t0;
-      }
-    }
-    for (std::size_t i = 0; i < obstacles.paths.size(); ++i) {
-      const double radius = obstacles.paths[i].radius;
-      const Vec2 a = p0 - prepared.path_position(i, t0);
-      const Vec2 b = p1 - prepared.path_position(i, t1);
-      if (check(geom::intersects(geom::Segment{a, b}, geom::Circle{Vec2::Zero(), radius + margin}),
-                b.norm() >= radius)) {
-        return t0;
-      }
-    }
-    const geom::Segment moved{p0, p1};
-    for (std::size_t i = 0; i < prepared.rectangles.size(); ++i) {
-      const geom::Rectangle& grown = prepared.rectangles[i];
-      const bool hit = boxes_overlap(p0, p1, grown) && geom::intersects(moved, grown);
-      if (check(hit, !obstacles.rectangles[i].contains(p1))) return t0;
-    }
-    for (std::size_t i = 0; i < prepared.stadiums.size(); ++i) {
-      if (check(geom::intersects(moved, prepared.stadiums[i]), !geom::contains(obstacles.stadiums[i], p1))) {
-        return t0;
-      }
-    }
-    if (obstacles.bounds) {
-      const bool in_bounds = obstacles.bounds->contains(p1);
-      if (check(!in_bounds, in_bounds)) return t0;
-    }
-    p0 = p1;
+  points.clear();
+  times.clear();
+  for (double t = 0;; t += prepared.step) {
+    const double at = std::min(t, end);
+    times.push_back(at);
+    points.push_back(path.position(at));
+    if (at >= end) break;
   }
-  return std::nullopt;
+  const std::size_t steps = points.size() - 1;  // step k goes from points[k] to points[k + 1]
+  if (steps == 0) return std::nullopt;
+  Vec2 low = points.front();
+  Vec2 high = points.front();
+  for (const Vec2& p : points) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  const auto misses_box = [&](const Vec2& a, const Vec2& b, double reach) {
+    return std::max(a.x(), b.x()) + reach < low.x() || std::min(a.x(), b.x()) - reach > high.x() ||
+           std::max(a.y(), b.y()) + reach < low.y() || std::min(a.y(), b.y()) - reach > high.y();
+  };
+
+  double earliest = std::numeric_limits<double>::infinity();
+  const auto keep = [&](const std::optional<double>& hit) {
+    if (hit) earliest = std::min(earliest, *hit);
+  };
+  std::size_t index = 0;
+  for (const MovingCircle& c : obstacles.circles) {
+    const char escaping = prepared.inside_at_start[index++];
+    const double reach = c.radius + margin;
+    if (!escaping && misses_box(c.position, c.position + c.velocity * end, reach)) continue;
+    const auto relative = [&](std::size_t k) { return Vec2(points[k] - (c.position + c.velocity * times[k])); };
+    keep(first_hit(
+        steps, times, earliest, escaping,
+        [&](std::size_t k) { return geom::intersects(geom::Segment{relative(k), relative(k + 1)}, geom::Circle{Vec2::Zero(), reach}); },
+        [&](std::size_t k) { return relative(k + 1).norm() >= c.radius; }));
+  }
+  for (std::size_t i = 0; i < obstacles.paths.size(); ++i) {
+    const char escaping = prepared.inside_at_start[index++];
+    const double radius = obstacles.paths[i].radius;
+    const auto relative = [&](std::size_t k) { return Vec2(points[k] - prepared.path_position(i, k, times[k])); };
+    keep(first_hit(
+        steps, times, earliest, escaping,
+        [&](std::size_t k) {
+          return geom::intersects(geom::Segment{relative(k), relative(k + 1)}, geom::Circle{Vec2::Zero(), radius + margin});
+        },
+        [&](std::size_t k) { return relative(k + 1).norm() >= radius; }));
+  }
+  for (std::size_t i = 0; i < prepared.rectangles.size(); ++i) {
+    const char escaping = prepared.inside_at_start[index++];
+    const geom::Rectangle& grown = prepared.rectangles[i];
+    if (!escaping && misses_box(grown.min(), grown.max(), 0)) continue;
+    keep(first_hit(
+        steps, times, earliest, escaping,
+        [&](std::size_t k) {
+          return boxes_overlap(points[k], points[k + 1], grown) &&
+                 geom::intersects(geom::Segment{points[k], points[k + 1]}, grown);
+        },
+        [&](std::size_t k) { return !obstacles.rectangles[i].contains(points[k + 1]); }));
+  }
+  for (std::size_t i = 0; i < prepared.stadiums.size(); ++i) {
+    const char escaping = prepared.inside_at_start[index++];
+    keep(first_hit(
+        steps, times, earliest, escaping,
+        [&](std::size_t k) { return geom::intersects(geom::Segment{points[k], points[k + 1]}, prepared.stadiums[i]); },
+        [&](std::size_t k) { return !geom::contains(obstacles.stadiums[i], points[k + 1]); }));
+  }
+  if (obstacles.bounds) {
+    const char escaping = prepared.inside_at_start[index++];
+    const geom::Rectangle& bounds = *obstacles.bounds;
+    keep(first_hit(
+        steps, times, earliest, escaping, [&](std::size_t k) { return !bounds.contains(points[k + 1]); },
+        [&](std::size_t k) { return bounds.contains(points[k + 1]); }));
+  }
+  if (earliest == std::numeric_limits<double>::infinity()) return std::nullopt;
+  return earliest;
 }
 
 /// Sub-destinations closer to the robot than this (m) are not tried.
@@ -142,8 +186,9 @@ Vec2 TrajectoryPath::velocity(double t) const {
 std::optional<double> first_collision(const TrajectoryPath& path, const PathObstacles& obstacles, double step,
                                       double horizon, double margin) {
   const Prepared prepared = prepare(path.position(0), obstacles, step, horizon, margin);
-  std::vector<char> inside = prepared.inside_at_start;
-  return sweep(path, prepared, inside);
+  std::vector<Vec2> points;
+  std::vector<double> times;
+  return sweep(path, prepared, points, times);
 }
 
 PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& destination,
@@ -152,7 +197,8 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
   // Between two checks the robot's curve stays within a * step^2 / 8 of the chord that is checked.
   const double chord_margin = limits.max_acceleration * params.step * params.step / 8;
   const Prepared prepared = prepare(position, obstacles, params.step, params.horizon, chord_margin);
-  std::vector<char> inside;
+  std::vector<Vec2> points;
+  std::vector<double> times;
   PathResult best;
   bool have_best = false;
   double best_rank = 0;  // the score, less keep_previous_margin for last tick's path
@@ -161,8 +207,7 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
     const double bonus = is_previous ? params.keep_previous_margin : 0.0;
     // Arrival time is a lower bound of the score: no sweep needed for a path that cannot win.
     if (have_best && candidate.duration() - bonus >= best_rank) return;
-    inside = prepared.inside_at_start;
-    const std::optional<double> collision = sweep(candidate, prepared, inside);
+    const std::optional<double> collision = sweep(candidate, prepared, points, times);
     const double score = score_of(candidate.duration(), collision, params);
     if (!have_best || score - bonus < best_rank) {
       best.path = candidate;
@@ -197,7 +242,7 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
   if (best.first_collision) {
     for (const double radius : params.radii) {
       for (int i = 0; i < params.directions; ++i) {
-        const double angle = 2 * std::numbers::pi * i / params.directions;
+        const double angle = params.direction_offset + 2 * std::numbers::pi * i / params.directions;
         through(position + radius * Vec2(std::cos(angle), std::sin(angle)), false);
       }
     }

@@ -72,6 +72,7 @@ struct PathObstacles {
 
 struct PathSearchParams {
   int directions = 16;                              // sub-destinations on each ring
+  double direction_offset = 0;                      // rad, where on each ring the first one lies
   std::vector<double> radii = {0.5, 1.0, 2.0};  // m, rings around the robot
   std::vector<double> switch_times = {0.2, 0.5};    // s along the first trajectory
   double step = 0.1;  // s between collision checks (swept chords; obstacles grown by a * step^2 / 8 to cover the curve)

@@ -1,6 +1,7 @@
 #include "services/planner/core/trajectory_motion.h"
 
 #include <algorithm>
+#include <numbers>
 
 #include "libs/domain/keep_out.h"
 
@@ -11,6 +12,7 @@ constexpr double kDribblerRpm = 3000;
 constexpr double kChipAngle = 0.6;              // rad
 constexpr double kDefenseZoneBehindGoal = 1.0;  // m, as the simple controller's zones
 constexpr double kArrived = 0.005;              // m: closer to the target than this, at rest, is there
+constexpr int kFreeTargetPasses = 3;            // moves of the target out of robots standing on it
 
 }  // namespace
 
@@ -24,6 +26,7 @@ void TrajectoryMotionPlanner::sent(std::uint32_t id, const Vec2& velocity, doubl
 }
 
 void TrajectoryMotionPlanner::begin_tick() {
+  ++ticks_;
   for (Memory& memory : memory_) {
     if (memory.planned_this_tick) {
       memory.previous = memory.planned ? std::optional<TrajectoryPath>(memory.planned->path) : std::nullopt;
@@ -36,8 +39,9 @@ void TrajectoryMotionPlanner::begin_tick() {
 }
 
 PathObstacles TrajectoryMotionPlanner::obstacles_for(const wm::RobotState& robot, const MotionIntent& intent,
-                                                     const Zones& zones) const {
+                                                     const Zones& zones) {
   PathObstacles obstacles;
+  robot_obstacles_ = 0;
   const double touching = 2 * params_.robot_radius;
   const double our_speed = memory_[robot.id].velocity.norm();
   for (const ZoneRobot& other : zones.robots) {
@@ -50,12 +54,14 @@ PathObstacles TrajectoryMotionPlanner::obstacles_for(const wm::RobotState& robot
       }
       obstacles.circles.push_back(
           {.position = other.position, .velocity = other.velocity, .radius = touching + params_.our_margin});
+      ++robot_obstacles_;
       continue;
     }
     obstacles.circles.push_back({.position = other.position,
                                  .velocity = other.velocity,
                                  .radius = touching + params_.their_margin +
                                            params_.their_margin_per_speed * our_speed});
+    ++robot_obstacles_;
   }
   const FieldGeometry& field = zones.field.size();
   if (intent.avoid_their_defense_area) {
@@ -74,6 +80,28 @@ PathObstacles TrajectoryMotionPlanner::obstacles_for(const wm::RobotState& robot
   return obstacles;
 }
 
+Vec2 TrajectoryMotionPlanner::free_target(const wm::RobotState& robot, Vec2 target,
+                                          const PathObstacles& obstacles) const {
+  // Where another robot stands (an opponent now, one of ours where its path ends) no path can end without a
+  // contact: stop at its edge instead, on our side of it.
+  for (int pass = 0; pass < kFreeTargetPasses; ++pass) {
+    bool moved = false;
+    const auto push_out = [&](const Vec2& center, double radius) {
+      const Vec2 away = target - center;
+      if (away.norm() >= radius) return;
+      Vec2 direction = geom::normalized_or_zero(away);
+      if (direction.squaredNorm() == 0) direction = geom::normalized_or_zero(Vec2(robot.position - center));
+      if (direction.squaredNorm() == 0) direction = Vec2(-1, 0);
+      target = center + direction * radius;
+      moved = true;
+    };
+    for (std::size_t i = 0; i < robot_obstacles_; ++i) push_out(obstacles.circles[i].position, obstacles.circles[i].radius);
+    for (const PathCircle& other : obstacles.paths) push_out(other.path.destination(), other.radius);
+    if (!moved) break;
+  }
+  return target;
+}
+
 RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const MotionIntent& intent,
                                            const Zones& zones, double dt) {
   RobotCommand command;
@@ -85,11 +113,13 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
     memory = Memory{.planned_this_tick = true};
     return command;
   }
-  const Vec2 target = project_out(intent.target, intent, zones);
   const TrajectoryLimits limits{.max_speed = std::min(intent.max_speed, limits_.max_speed),
                                 .max_acceleration = limits_.max_acceleration};
   const PathObstacles obstacles = obstacles_for(robot, intent, zones);
-  memory.planned = search_path(robot.position, memory.velocity, target, limits, obstacles, params_.search,
+  const Vec2 target = free_target(robot, project_out(intent.target, intent, zones), obstacles);
+  PathSearchParams search = params_.search;
+  if (ticks_ % 2 == 1) search.direction_offset += std::numbers::pi / search.directions;
+  memory.planned = search_path(robot.position, memory.velocity, target, limits, obstacles, search,
                                memory.previous ? &*memory.previous : nullptr);
   const TrajectoryPath& path = memory.planned->path;
   Vec2 velocity = path.velocity(dt);

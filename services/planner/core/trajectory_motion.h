@@ -30,7 +30,9 @@ struct TrajectoryMotionParams {
   double our_margin = 0.03;            // m between two of our robots
   double their_margin = 0.05;          // m between us and an opponent at rest
   double their_margin_per_speed = 0.1;  // s: more margin per m/s of our speed (an opponent may move)
-  PathSearchParams search;
+  // Sub-destinations per ring and tick; successive ticks turn the rings by half the spacing, so that two
+  // ticks try twice as many directions (last tick's best is always tried again).
+  PathSearchParams search = {.directions = 8};
 };
 
 class TrajectoryMotionPlanner final : public MotionPlanner {
@@ -54,11 +56,16 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
     bool planned_this_tick = false;
   };
 
-  PathObstacles obstacles_for(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones) const;
+  /// Fills robot_obstacles_: the robots come first in `circles`.
+  PathObstacles obstacles_for(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones);
+  /// `target` moved out of any robot standing on it (our robots: where their planned paths end).
+  Vec2 free_target(const wm::RobotState& robot, Vec2 target, const PathObstacles& obstacles) const;
 
   MotionLimits limits_;
   TrajectoryMotionParams params_;
   std::array<Memory, wm::kMaxRobotsPerTeam> memory_{};
+  std::uint64_t ticks_ = 0;
+  std::size_t robot_obstacles_ = 0;  // of the last obstacles_for()
 };
 
 }  // namespace ssl::planner
