@@ -172,6 +172,15 @@ idl::planner::PlannerDebug to_idl(const PlannerOutput& in, TeamColor team, const
       path.robot_id(r.robot_id);
       path.destination().x(r.target.x());
       path.destination().y(r.target.y());
+      for (const Vec2& p : r.path) {
+        if (!std::isfinite(p.x()) || !std::isfinite(p.y())) continue;
+        idl::common::Vec2 point;
+        point.x(p.x());
+        point.y(p.y());
+        path.points().push_back(point);
+      }
+      path.has_tracking_error(r.tracking_error.has_value());
+      path.tracking_error(r.tracking_error.value_or(0.0));
       out.paths().push_back(std::move(path));
     }
   }

@@ -215,7 +215,8 @@ TEST(PlannerConvert, DebugCarriesPlayRolesTreeAndTargets) {
   out.roles = {{.robot_id = 0, .role = "goalkeeper", .tactic = "guard_goal", .skill = "move_to",
                 .target = Vec2(-5.8, 0.1)},
                {.robot_id = 3, .role = "defender", .tactic = "stop_formation", .skill = "move_to",
-                .target = Vec2(-3.0, 1.0)}};
+                .target = Vec2(-3.0, 1.0), .path = {Vec2(-3.4, 1.0), Vec2(-3.2, 1.0), Vec2(-3.0, 1.0)},
+                .tracking_error = 0.02}};
   out.tree = {{.name = "root", .depth = 0, .status = TreeNodeInfo::Status::kRunning},
               {.name = "referee_override", .depth = 1, .status = TreeNodeInfo::Status::kRunning},
               {.name = "stop", .depth = 2, .status = TreeNodeInfo::Status::kSuccess},
@@ -237,6 +238,12 @@ TEST(PlannerConvert, DebugCarriesPlayRolesTreeAndTargets) {
   ASSERT_EQ(debug.paths().size(), 2u);
   EXPECT_EQ(debug.paths()[0].destination().x(), -5.8);
   EXPECT_EQ(debug.paths()[1].robot_id(), 3u);
+  EXPECT_TRUE(debug.paths()[0].points().empty());
+  EXPECT_FALSE(debug.paths()[0].has_tracking_error());
+  ASSERT_EQ(debug.paths()[1].points().size(), 3u);
+  EXPECT_EQ(debug.paths()[1].points()[1].x(), -3.2);
+  EXPECT_TRUE(debug.paths()[1].has_tracking_error());
+  EXPECT_EQ(debug.paths()[1].tracking_error(), 0.02);
   ASSERT_EQ(debug.tree().size(), 5u);
   EXPECT_EQ(debug.tree()[1].name(), "referee_override");
   EXPECT_EQ(debug.tree()[2].depth(), 2u);

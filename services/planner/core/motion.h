@@ -82,6 +82,14 @@ class MotionPlanner {
 
   /// Called once per tick before the first plan(): robots are then planned in priority order.
   virtual void begin_tick() {}
+
+  /// For planner.debug: robot `id`'s planned path this tick (team frame, every `step` s; empty without
+  /// one) and how far the robot was from where last tick's plan put it (nullopt without one).
+  virtual void describe(std::uint32_t /*id*/, double /*step*/, std::vector<Vec2>& path,
+                        std::optional<double>& tracking_error) const {
+    path.clear();
+    tracking_error.reset();
+  }
 };
 
 /// Planner I's controller. Keeps the last sent velocity per robot id (0..15) for acceleration limiting.

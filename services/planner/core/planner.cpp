@@ -16,6 +16,9 @@
 namespace ssl::planner {
 namespace {
 
+/// Spacing (s) of the planned-path points in planner.debug.
+constexpr double kDebugPathStep = 0.1;
+
 namespace bt = ssl::bt;
 
 /// What every node reads: the tick's situation and the team's memory (pointers: set before each tick).
@@ -335,6 +338,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
     role.tactic.assign(intent.tactic);
     role.skill.assign(intent.skill);
     role.target = intent.active ? intent.target : robot.position;
+    motion->describe(robot.id, kDebugPathStep, role.path, role.tracking_error);
   }
   out.play.assign(intents.play);
   out.tick = ticks;

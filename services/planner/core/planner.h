@@ -64,6 +64,8 @@ struct RoleInfo {
   std::string tactic;   // e.g. "stop_formation", "place_ball"
   std::string skill;    // e.g. "move_to", "dribble_to", "kick"
   Vec2 target = Vec2::Zero();
+  std::vector<Vec2> path;                 // the planned trajectory every 0.1 s (planner II), team frame
+  std::optional<double> tracking_error;   // m, from where last tick's trajectory put the robot now
 };
 
 struct TreeNodeInfo {

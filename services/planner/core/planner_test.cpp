@@ -483,3 +483,44 @@ TEST(PlannerRoleStabilityTest, RolesDoNotFlapWhenRobotsJitter) {
 
 }  // namespace
 }  // namespace ssl::planner
+
+namespace ssl::planner {
+namespace {
+
+TEST(PlannerDebugTest, TrajectoriesReportTheirPathAndTrackingError) {
+  const Side side{};
+  Script script(side);
+  script.default_teams();
+  script.command(RefereeCommand::kStop);
+  PlannerConfig config = testing::config_for(side);
+  config.motion = MotionControl::kTrajectory;
+  Planner planner(config);
+  const PlannerOutput first = planner.step(script.inputs(), testing::at_tick(0));
+  ASSERT_FALSE(first.roles.empty());
+  bool some_path = false;
+  for (const RoleInfo& role : first.roles) {
+    EXPECT_FALSE(role.tracking_error) << "no trajectory last tick";
+    if (role.path.size() < 2) continue;
+    some_path = true;
+    EXPECT_LT((role.path.front() - script.robot(role.robot_id)->position).norm(), 1e-9) << "starts at the robot";
+    EXPECT_LE((role.path[1] - role.path[0]).norm(), kStopSpeed * 0.1 + 1e-6) << "0.1 s apart within the STOP limit";
+  }
+  EXPECT_TRUE(some_path) << "robots moving to their STOP positions have paths";
+
+  // The robots did not move (the script is static): the error is how far the plan expected them to go.
+  const PlannerOutput second = planner.step(script.inputs(), testing::at_tick(1));
+  for (const RoleInfo& role : second.roles) {
+    ASSERT_TRUE(role.tracking_error) << "robot " << role.robot_id;
+    EXPECT_GE(*role.tracking_error, 0.0);
+    EXPECT_LT(*role.tracking_error, 0.01) << "one tick of a trajectory from rest is less than a centimetre";
+  }
+
+  Planner simple(testing::config_for(side));
+  for (const RoleInfo& role : simple.step(script.inputs(), testing::at_tick(0)).roles) {
+    EXPECT_TRUE(role.path.empty());
+    EXPECT_FALSE(role.tracking_error);
+  }
+}
+
+}  // namespace
+}  // namespace ssl::planner

@@ -102,6 +102,19 @@ Vec2 TrajectoryMotionPlanner::free_target(const wm::RobotState& robot, Vec2 targ
   return target;
 }
 
+void TrajectoryMotionPlanner::describe(std::uint32_t id, double step, std::vector<Vec2>& path,
+                                       std::optional<double>& tracking_error) const {
+  path.clear();
+  tracking_error.reset();
+  if (id >= memory_.size() || !memory_[id].planned_this_tick) return;
+  const Memory& memory = memory_[id];
+  tracking_error = memory.tracking_error;
+  if (!memory.planned) return;
+  const TrajectoryPath& planned = memory.planned->path;
+  for (double t = 0; t < planned.duration(); t += step) path.push_back(planned.position(t));
+  path.push_back(planned.position(planned.duration()));
+}
+
 RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const MotionIntent& intent,
                                            const Zones& zones, double dt) {
   RobotCommand command;
@@ -109,6 +122,8 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   if (robot.id >= memory_.size()) return command;
   Memory& memory = memory_[robot.id];
   memory.planned_this_tick = true;
+  memory.tracking_error.reset();
+  if (memory.previous) memory.tracking_error = (memory.previous->position(dt) - robot.position).norm();
   if (!intent.active || intent.halt) {
     memory = Memory{.planned_this_tick = true};
     return command;

@@ -43,6 +43,8 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
                     double dt) override;
   void sent(std::uint32_t id, const Vec2& velocity, double angular) override;
   void begin_tick() override;
+  void describe(std::uint32_t id, double step, std::vector<Vec2>& path,
+                std::optional<double>& tracking_error) const override;
 
   /// The path chosen for robot `id` this tick (TEAM frame), if it was planned.
   const std::optional<PathResult>& path(std::uint32_t id) const { return memory_.at(id).planned; }
@@ -54,6 +56,7 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
     std::optional<PathResult> planned;  // this tick's (reset by begin_tick)
     std::optional<TrajectoryPath> previous;  // last tick's, for the search
     bool planned_this_tick = false;
+    std::optional<double> tracking_error;  // m, this tick
   };
 
   /// Fills robot_obstacles_: the robots come first in `circles`.
