@@ -24,6 +24,8 @@ Fields<PlannerConfig> core_fields() {
       field("motion", &PlannerConfig::motion)
           .values({{"simple", MotionControl::kSimple}, {"trajectory", MotionControl::kTrajectory}})
           .doc("skill layer: simple (proportional, local detours) or trajectory (time-optimal, path search)"),
+      field("actuation_latency", &PlannerConfig::actuation_latency).unit("s").range(0, 0.2)
+          .doc("from a tick until its command acts on the robot; trajectories plan from where the robot will be"),
       field("robot_radius", &PlannerConfig::robot_radius).unit("m").range(0.05, 0.2),
       field("stop_speed", &PlannerConfig::stop_speed).unit("m/s").range(0.1, rules::kStopMaxSpeed)
           .doc("the rules' limit during STOP or below"),

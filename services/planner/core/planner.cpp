@@ -211,6 +211,7 @@ std::unique_ptr<MotionPlanner> make_motion_planner(const PlannerConfig& config) 
   if (config.motion == MotionControl::kTrajectory) {
     TrajectoryMotionParams params;
     params.robot_radius = config.robot_radius;
+    params.actuation_latency = config.actuation_latency;
     return std::make_unique<TrajectoryMotionPlanner>(config.limits, params);
   }
   return std::make_unique<SimpleMotionPlanner>(config.limits);

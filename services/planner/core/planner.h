@@ -97,6 +97,10 @@ struct PlannerConfig {
   TeamColor team = TeamColor::kBlue;
   MotionLimits limits;
   MotionControl motion = MotionControl::kSimple;
+  // s from the planner's tick until its command acts on the robot (DDS, robot_link, radio): the trajectory
+  // skill layer plans from where the last command will have taken the robot by then. world.state is
+  // already predicted to now (world_model compensates the vision delay).
+  double actuation_latency = 0.015;
   double tick_period = 1.0 / 100;      // s, nominal (used for acceleration limiting)
   double robot_radius = 0.09;          // m
   double stop_speed = rules::kStopMaxSpeed;  // m/s during STOP (a margin is applied below it)

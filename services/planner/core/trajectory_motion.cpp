@@ -134,7 +134,9 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   const Vec2 target = free_target(robot, project_out(intent.target, intent, zones), obstacles);
   PathSearchParams search = params_.search;
   if (ticks_ % 2 == 1) search.direction_offset += std::numbers::pi / search.directions;
-  memory.planned = search_path(robot.position, memory.velocity, target, limits, obstacles, search,
+  // Until this command acts, the last one keeps driving the robot.
+  const Vec2 start = robot.position + memory.velocity * params_.actuation_latency;
+  memory.planned = search_path(start, memory.velocity, target, limits, obstacles, search,
                                memory.previous ? &*memory.previous : nullptr);
   const TrajectoryPath& path = memory.planned->path;
   Vec2 velocity = path.velocity(dt);

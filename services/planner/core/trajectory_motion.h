@@ -27,6 +27,7 @@ namespace ssl::planner {
 
 struct TrajectoryMotionParams {
   double robot_radius = 0.09;          // m, ours and theirs
+  double actuation_latency = 0;        // s until a command acts: plans start where the last one takes us
   double our_margin = 0.03;            // m between two of our robots
   double their_margin = 0.05;          // m between us and an opponent at rest
   double their_margin_per_speed = 0.1;  // s: more margin per m/s of our speed (an opponent may move)

@@ -12,6 +12,7 @@ PlannerConfig planner_config(TeamColor team, const sim::FieldGeometry& field, Mo
   PlannerConfig config;
   config.team = team;
   config.motion = motion;
+  config.actuation_latency = 0;  // in lockstep a command acts on the simulated robot at once
   config.default_field = field;
   return config;
 }

@@ -1,0 +1,72 @@
+#include "services/planner/core/trajectory_motion.h"
+
+#include <gtest/gtest.h>
+
+namespace ssl::planner {
+namespace {
+
+wm::RobotState robot_at(std::uint32_t id, const Vec2& position) {
+  wm::RobotState robot;
+  robot.id = id;
+  robot.position = position;
+  robot.visible = true;
+  return robot;
+}
+
+MotionIntent go_to(const Vec2& target) {
+  MotionIntent intent;
+  intent.active = true;
+  intent.target = target;
+  intent.avoid_their_defense_area = false;
+  intent.avoid_our_defense_area = false;
+  return intent;
+}
+
+TEST(TrajectoryMotion, PlansFromWhereTheLastCommandTakesTheRobotWithinTheLatency) {
+  TrajectoryMotionPlanner motion(MotionLimits{}, {.actuation_latency = 0.02});
+  const wm::RobotState robot = robot_at(1, {0, 0});
+  const Zones zones;
+  motion.begin_tick();
+  motion.sent(1, Vec2(1.0, 0.5), 0);
+  (void)motion.plan(robot, go_to({2, 0}), zones, 0.01);
+  std::vector<Vec2> path;
+  std::optional<double> error;
+  motion.describe(1, 0.1, path, error);
+  ASSERT_FALSE(path.empty());
+  EXPECT_NEAR(path.front().x(), 0.02, 1e-12);
+  EXPECT_NEAR(path.front().y(), 0.01, 1e-12);
+  EXPECT_NEAR(path.back().x(), 2.0, 1e-9);
+}
+
+TEST(TrajectoryMotion, ATargetAnOpponentStandsOnMovesToItsEdge) {
+  TrajectoryMotionPlanner motion(MotionLimits{});
+  const wm::RobotState robot = robot_at(1, {-2, 0});
+  Zones zones;
+  zones.robots.push_back({.id = 1, .ours = true, .position = robot.position});
+  zones.robots.push_back({.id = 4, .ours = false, .position = {0.05, 0}});
+  motion.begin_tick();
+  (void)motion.plan(robot, go_to({0, 0}), zones, 0.01);
+  std::vector<Vec2> path;
+  std::optional<double> error;
+  motion.describe(1, 0.1, path, error);
+  ASSERT_FALSE(path.empty());
+  const double apart = (path.back() - Vec2(0.05, 0)).norm();
+  EXPECT_NEAR(apart, 2 * 0.09 + 0.05, 1e-9) << "the opponent's edge, at rest: two radii and the margin";
+  EXPECT_LT(path.back().x(), 0.05) << "on our side of it";
+}
+
+TEST(TrajectoryMotion, HaltAndInactiveIntentsStopAtOnce) {
+  TrajectoryMotionPlanner motion(MotionLimits{});
+  const wm::RobotState robot = robot_at(2, {0, 0});
+  motion.begin_tick();
+  motion.sent(2, Vec2(2, 0), 0);
+  MotionIntent halt = go_to({3, 0});
+  halt.halt = true;
+  const RobotCommand command = motion.plan(robot, halt, Zones{}, 0.01);
+  EXPECT_EQ(command.forward, 0.0);
+  EXPECT_EQ(command.left, 0.0);
+  EXPECT_EQ(command.angular, 0.0);
+}
+
+}  // namespace
+}  // namespace ssl::planner
