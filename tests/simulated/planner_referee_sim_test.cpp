@@ -54,6 +54,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -208,6 +209,12 @@ class LockstepMatch {
     EXPECT_TRUE(sim_.apply(request).empty());
   }
   void script(std::vector<RefereeEvent> events) { script_ = std::move(events); }
+  /// Applies a simulator control request; true when it was accepted whole.
+  bool sim_apply(const sim::ControlRequest& request) {
+    const bool ok = sim_.apply(request).empty();
+    refresh_truth();
+    return ok;
+  }
 
   /// One lockstep tick: referee, both stacks, 10 ms of simulation, camera frames, ground truth.
   void tick() {
@@ -292,6 +299,12 @@ class LockstepMatch {
       }
       s.dribbler_rpm = c.dribbler_rpm;
     }
+    // Robots taken off the field get no command.
+    std::erase_if(t.commands, [&](const sim::RobotCommandFor& c) {
+      return std::none_of(truth_.robots.begin(), truth_.robots.end(), [&](const TrueRobot& r) {
+        return r.id == c.id && r.ours == (t.color == us());
+      });
+    });
     EXPECT_TRUE(sim_.set_commands(t.color, t.commands).empty());
     for (const sim::RobotCommandFor& c : t.commands) {
       t.sent.push_back({c.id, c.command.velocity.x(), c.command.velocity.y(), c.command.velocity.z()});
@@ -976,6 +989,58 @@ TEST_P(PlannerSimReferee, PenaltyPositionsHoldThenOurKickerShoots) {
                 "kicker " + Always::fmt(kicker_distance) + " m from the mark, closest other " +
                     Always::fmt(-max_behind) + " m behind, keeper off the line " +
                     Always::fmt(keeper_offset) + " m, shot after " + Always::fmt(shot.at()) + " s");
+}
+
+// ---- the keeper --------------------------------------------------------------------------------------------
+
+/// Removes robot `id` of us / them from the field.
+void take_off(LockstepMatch& m, bool ours, std::uint32_t id) {
+  sim::ControlRequest request;
+  request.robots.push_back({.key = {ours ? m.us() : m.them(), id}, .present = false});
+  EXPECT_TRUE(m.sim_apply(request));
+}
+
+TEST_P(PlannerSimReferee, TheKeeperSavesStraightShotsAtFourMetresPerSecond) {
+  // Only the two keepers on the field, normal play: 20 shots from 4 m in front of our goal, each at a random
+  // point of the goal mouth at 4 m/s. A save: the ball does not cross our goal line inside the goal.
+  constexpr int kShots = 20;
+  constexpr double kShotSpeed = 4.0;    // m/s
+  constexpr double kShotDistance = 4.0;  // m from the goal line
+  LockstepMatch m(param(), seed());
+  for (std::uint32_t id = 1; id < kRobots; ++id) {
+    take_off(m, true, id);
+    take_off(m, false, id);
+  }
+  const double goal_line = -m.half_length();
+  const double half_goal = m.field().goal_width / 2;
+  m.script({{0.0, RefereeCommand::kForceStart}});
+  std::mt19937 random(static_cast<std::uint32_t>(seed()));
+  std::uniform_real_distribution<double> from_y(-1.0, 1.0);
+  std::uniform_real_distribution<double> aim_y(-(half_goal - kBallRadius), half_goal - kBallRadius);
+  int goals = 0;
+  for (int shot = 0; shot < kShots; ++shot) {
+    m.place(true, 0, {goal_line + 0.15, 0}, 0.0);
+    m.place(false, 0, {-goal_line - 0.15, 0}, M_PI);
+    const Vec2 from(goal_line + kShotDistance, from_y(random));
+    m.place_ball(from);
+    for (int i = 0; i < 50; ++i) m.tick();  // 0.5 s: the keeper takes its place for the ball lying there
+    m.place_ball(from);
+    const Vec2 aim(goal_line, aim_y(random));
+    m.roll_ball((aim - from).normalized() * kShotSpeed);
+    bool scored = false;
+    for (int i = 0; i < 250; ++i) {
+      m.tick();
+      const Vec2 ball = m.truth().ball;
+      if (ball.x() < goal_line) {
+        scored = std::abs(ball.y()) < half_goal;
+        break;
+      }
+      if (m.truth().ball_velocity.x() > 0.2) break;  // turned back: saved
+    }
+    goals += scored ? 1 : 0;
+  }
+  std::printf("[%s] keeper: %d of %d shots saved\n", param().name().c_str(), kShots - goals, kShots);
+  EXPECT_GE(kShots - goals, kShots * 8 / 10);
 }
 
 INSTANTIATE_TEST_SUITE_P(PlannerSim, PlannerSimReferee, ::testing::ValuesIn(all_cases()),
