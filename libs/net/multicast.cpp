@@ -102,6 +102,9 @@ Result<MulticastReceiver> MulticastReceiver::open(const Endpoint& group, std::st
   if (Status ok = socket.set_int_option(SOL_SOCKET, SO_REUSEPORT, 1, "set SO_REUSEPORT"); !ok) {
     return with_context(context, ok.error());
   }
+  if (Status ok = socket.set_int_option(SOL_SOCKET, SO_RCVBUF, kReceiveBufferRequest, "set SO_RCVBUF"); !ok) {
+    return with_context(context, ok.error());
+  }
   // Only the groups this socket joined, not every group joined on this port by any socket of the host.
   if (Status ok = socket.set_int_option(IPPROTO_IP, IP_MULTICAST_ALL, 0, "clear IP_MULTICAST_ALL"); !ok) {
     return with_context(context, ok.error());
@@ -132,6 +135,10 @@ Result<MulticastReceiver> MulticastReceiver::open(std::string_view group, int po
 
 MulticastReceiver::MulticastReceiver(std::unique_ptr<detail::SocketCore> core, Endpoint group) noexcept
     : core_(std::move(core)), group_(group) {}
+
+Result<int> MulticastReceiver::receive_buffer_bytes() const {
+  return core_->int_option(SOL_SOCKET, SO_RCVBUF, "read SO_RCVBUF");
+}
 
 MulticastReceiver::MulticastReceiver(MulticastReceiver&& other) noexcept = default;
 MulticastReceiver& MulticastReceiver::operator=(MulticastReceiver&& other) noexcept = default;

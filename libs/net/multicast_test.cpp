@@ -7,8 +7,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <future>
 #include <string>
 #include <thread>
@@ -153,6 +155,20 @@ TEST(MulticastTest, InterfaceThatIsNotOnThisHostIsReportedWithTheErrnoText) {
   ASSERT_FALSE(receiver);
   EXPECT_THAT(receiver.error().message,
               HasSubstr("join multicast group 239.255.42.8 on interface 192.0.2.1 failed"));
+}
+
+TEST(MulticastTest, TheReceiveBufferHoldsBurstsAsLargeAsTheHostAllows) {
+  // The kernel grants min(request, net.core.rmem_max) and reports twice that (its bookkeeping).
+  int rmem_max = 0;
+  if (std::FILE* file = std::fopen("/proc/sys/net/core/rmem_max", "r")) {
+    if (std::fscanf(file, "%d", &rmem_max) != 1) rmem_max = 0;
+    std::fclose(file);
+  }
+  if (rmem_max <= 0) GTEST_SKIP() << "net.core.rmem_max is not readable here";
+  MulticastReceiver receiver = value_or_throw(MulticastReceiver::open("239.255.42.7", 0));
+  const Result<int> bytes = receiver.receive_buffer_bytes();
+  ASSERT_TRUE(bytes) << bytes.error().message;
+  EXPECT_EQ(*bytes, 2 * std::min(rmem_max, MulticastReceiver::kReceiveBufferRequest));
 }
 
 }  // namespace

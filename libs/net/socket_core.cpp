@@ -64,6 +64,13 @@ Status SocketCore::set_int_option(int level, int name, int value, std::string_vi
   return set_option(level, name, &value, sizeof value, what);
 }
 
+Result<int> SocketCore::int_option(int level, int name, std::string_view what) const {
+  int value = 0;
+  socklen_t length = sizeof value;
+  if (::getsockopt(fd_, level, name, &value, &length) != 0) return Error{errno_message(what)};
+  return value;
+}
+
 Status SocketCore::set_option(int level, int name, const void* value, unsigned length,
                               std::string_view what) {
   if (::setsockopt(fd_, level, name, value, length) != 0) return Error{errno_message(what)};

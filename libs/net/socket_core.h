@@ -31,6 +31,7 @@ class SocketCore {
 
   /// setsockopt with an int value; `what` names the option in the error ("set SO_REUSEPORT").
   Status set_int_option(int level, int name, int value, std::string_view what);
+  Result<int> int_option(int level, int name, std::string_view what) const;
   /// setsockopt with any value type.
   Status set_option(int level, int name, const void* value, unsigned length, std::string_view what);
 
