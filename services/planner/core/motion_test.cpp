@@ -4,32 +4,20 @@
 
 #include <cmath>
 
+#include "services/planner/core/planner_test_util.h"
 #include "services/planner/core/rules.h"
 #include "libs/domain/game_state.h"
 
 namespace ssl::planner {
 namespace {
 
+using testing::go_to;
+using testing::robot_at;
+
 Zones zones_with_ball(const Vec2& ball) {
   Zones zones;
   zones.ball = ball;
   return zones;
-}
-
-wm::RobotState robot_at(const Vec2& p, double heading = 0) {
-  wm::RobotState r;
-  r.id = 1;
-  r.position = p;
-  r.orientation = heading;
-  r.visible = true;
-  return r;
-}
-
-MotionIntent go_to(const Vec2& target) {
-  MotionIntent intent;
-  intent.active = true;
-  intent.target = target;
-  return intent;
 }
 
 TEST(PlannerMotionTest, TargetsInForbiddenZonesAreProjectedOut) {

@@ -158,6 +158,24 @@ inline PlannerConfig config_for(const Side& side) {
   return config;
 }
 
+/// A visible robot of ours at `position` (team frame), for the skill-layer tests.
+inline wm::RobotState robot_at(const Vec2& position, double heading = 0, std::uint32_t id = 1) {
+  wm::RobotState robot;
+  robot.id = id;
+  robot.position = position;
+  robot.orientation = heading;
+  robot.visible = true;
+  return robot;
+}
+
+/// An active intent to `target` (team frame), everything else as MotionIntent's defaults.
+inline MotionIntent go_to(const Vec2& target) {
+  MotionIntent intent;
+  intent.active = true;
+  intent.target = target;
+  return intent;
+}
+
 inline time::Timestamp at_tick(int tick) { return time::Timestamp::from_milliseconds(1'000'000 + tick * 10); }
 
 inline Vec2 team_velocity(const RobotCommand& c, double heading) { return to_team(c, heading); }

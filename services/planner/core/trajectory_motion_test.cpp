@@ -2,29 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include "services/planner/core/planner_test_util.h"
+
 namespace ssl::planner {
 namespace {
 
-wm::RobotState robot_at(std::uint32_t id, const Vec2& position) {
-  wm::RobotState robot;
-  robot.id = id;
-  robot.position = position;
-  robot.visible = true;
-  return robot;
-}
-
-MotionIntent go_to(const Vec2& target) {
-  MotionIntent intent;
-  intent.active = true;
-  intent.target = target;
-  intent.avoid_their_defense_area = false;
-  intent.avoid_our_defense_area = false;
-  return intent;
-}
+using testing::go_to;
+using testing::robot_at;
 
 TEST(TrajectoryMotion, PlansFromWhereTheLastCommandTakesTheRobotWithinTheLatency) {
   TrajectoryMotionPlanner motion(MotionLimits{}, {.actuation_latency = 0.02});
-  const wm::RobotState robot = robot_at(1, {0, 0});
+  const wm::RobotState robot = robot_at({0, 0});
   const Zones zones;
   motion.begin_tick();
   motion.sent(1, Vec2(1.0, 0.5), 0);
@@ -40,7 +28,7 @@ TEST(TrajectoryMotion, PlansFromWhereTheLastCommandTakesTheRobotWithinTheLatency
 
 TEST(TrajectoryMotion, ATargetAnOpponentStandsOnMovesToItsEdge) {
   TrajectoryMotionPlanner motion(MotionLimits{});
-  const wm::RobotState robot = robot_at(1, {-2, 0});
+  const wm::RobotState robot = robot_at({-2, 0});
   Zones zones;
   zones.robots.push_back({.id = 1, .ours = true, .position = robot.position});
   zones.robots.push_back({.id = 4, .ours = false, .position = {0.05, 0}});
@@ -57,7 +45,7 @@ TEST(TrajectoryMotion, ATargetAnOpponentStandsOnMovesToItsEdge) {
 
 TEST(TrajectoryMotion, HaltAndInactiveIntentsStopAtOnce) {
   TrajectoryMotionPlanner motion(MotionLimits{});
-  const wm::RobotState robot = robot_at(2, {0, 0});
+  const wm::RobotState robot = robot_at({0, 0}, 0, 2);
   motion.begin_tick();
   motion.sent(2, Vec2(2, 0), 0);
   MotionIntent halt = go_to({3, 0});
