@@ -20,7 +20,6 @@ constexpr double kEscapeSpeed = 0.6;   // m/s, minimum speed out of a zone we ar
 constexpr double kRobotClearance = 0.22;  // m between two robots' centres when passing (2 radii + 0.04)
 constexpr double kRobotLookAhead = 1.0;   // m along the way in which robots are gone around
 constexpr int kProjectionPasses = 4;
-
 /// How far a defense-area zone reaches behind its goal line (into the goal and up to the wall).
 constexpr double kDefenseZoneBehindGoal = 1.0;  // m
 
@@ -32,13 +31,6 @@ Vec2 exit_towards_field(const geom::Rectangle& zone, const Vec2& p, bool opens_t
   return {p.x(), p.y() >= 0 ? zone.max().y() : zone.min().y()};
 }
 
-geom::Rectangle our_zone(const wm::Field& field, double margin) {
-  return defense_area_keep_out(field.size(), -1, margin, kDefenseZoneBehindGoal);
-}
-geom::Rectangle their_zone(const wm::Field& field, double margin) {
-  return defense_area_keep_out(field.size(), +1, margin, kDefenseZoneBehindGoal);
-}
-
 Vec2 push_out_of_circle(const Vec2& p, const Vec2& center, double radius, const Vec2& fallback) {
   const Vec2 d = p - center;
   const double n = d.norm();
@@ -48,13 +40,8 @@ Vec2 push_out_of_circle(const Vec2& p, const Vec2& center, double radius, const 
 }
 
 Vec2 clamp_to_field(const Vec2& p, const MotionIntent& intent, const Zones& zones) {
-  // The walls stand boundary_width beyond the lines (behind the goal lines too: the division A's wider
-  // margin there is not used).
-  const double beyond = intent.may_enter_boundary ? zones.field.size().boundary_width - zones.wall_margin
-                                                  : zones.field_margin;
-  const double hx = zones.field.half_length() + beyond;
-  const double hy = zones.field.half_width() + beyond;
-  return {std::clamp(p.x(), -hx, hx), std::clamp(p.y(), -hy, hy)};
+  const geom::Rectangle area = allowed_area(intent, zones);
+  return {std::clamp(p.x(), area.min().x(), area.max().x()), std::clamp(p.y(), area.min().y(), area.max().y())};
 }
 
 double clamp_abs(double value, double limit) { return std::clamp(value, -limit, limit); }
@@ -80,16 +67,41 @@ std::optional<Vec2> detour(const Vec2& p, const Vec2& dir, double length, const 
 
 }  // namespace
 
+geom::Rectangle our_defense_zone(const Zones& zones) {
+  return defense_area_keep_out(zones.field.size(), -1, zones.our_defense_margin, kDefenseZoneBehindGoal);
+}
+
+geom::Rectangle their_defense_zone(const Zones& zones) {
+  return defense_area_keep_out(zones.field.size(), +1, zones.their_defense_margin, kDefenseZoneBehindGoal);
+}
+
+geom::Rectangle allowed_area(const MotionIntent& intent, const Zones& zones) {
+  // The walls stand boundary_width beyond the lines (behind the goal lines too: the division A's wider
+  // margin there is not used).
+  const double beyond = intent.may_enter_boundary ? zones.field.size().boundary_width - zones.wall_margin
+                                                  : zones.field_margin;
+  const double hx = zones.field.half_length() + beyond;
+  const double hy = zones.field.half_width() + beyond;
+  return {{-hx, -hy}, {hx, hy}};
+}
+
+void set_ball_actions(const MotionIntent& intent, RobotCommand& command) {
+  command.dribbler_rpm = intent.dribble ? kDribblerRpm : 0;
+  command.kick = intent.kick;
+  command.kick_speed = intent.kick == KickType::kNone ? 0 : intent.kick_speed;
+  command.chip_angle = intent.kick == KickType::kChip ? kChipAngle : 0;
+}
+
 Vec2 project_out(const Vec2& target, const MotionIntent& intent, const Zones& zones) {
   Vec2 p = clamp_to_field(target, intent, zones);
   for (int pass = 0; pass < kProjectionPasses; ++pass) {
     const Vec2 before = p;
     if (intent.avoid_their_defense_area) {
-      const geom::Rectangle zone = their_zone(zones.field, zones.their_defense_margin);
+      const geom::Rectangle zone = their_defense_zone(zones);
       if (zone.contains(p)) p = exit_towards_field(zone, p, false);
     }
     if (intent.avoid_our_defense_area) {
-      const geom::Rectangle zone = our_zone(zones.field, zones.our_defense_margin);
+      const geom::Rectangle zone = our_defense_zone(zones);
       if (zone.contains(p)) p = exit_towards_field(zone, p, true);
     }
     if (intent.avoid_placement_corridor && zones.placement_corridor) {
@@ -157,8 +169,8 @@ RobotCommand SimpleMotionPlanner::plan(const wm::RobotState& robot, const Motion
     if (!zone.contains(p)) return;
     escape += geom::normalized_or_zero(exit_towards_field(zone, p, towards_positive_x) - p);
   };
-  const geom::Rectangle their = their_zone(zones.field, zones.their_defense_margin);
-  const geom::Rectangle ours = our_zone(zones.field, zones.our_defense_margin);
+  const geom::Rectangle their = their_defense_zone(zones);
+  const geom::Rectangle ours = our_defense_zone(zones);
   if (intent.avoid_their_defense_area) leave_box(their, false);
   if (intent.avoid_our_defense_area) leave_box(ours, true);
 
@@ -221,10 +233,7 @@ RobotCommand SimpleMotionPlanner::plan(const wm::RobotState& robot, const Motion
   memory = {velocity, angular};
 
   command = to_local(robot.id, velocity, angular, robot.orientation);
-  command.dribbler_rpm = intent.dribble ? kDribblerRpm : 0;
-  command.kick = intent.kick;
-  command.kick_speed = intent.kick == KickType::kNone ? 0 : intent.kick_speed;
-  command.chip_angle = intent.kick == KickType::kChip ? kChipAngle : 0;
+  set_ball_actions(intent, command);
   return command;
 }
 

@@ -20,6 +20,7 @@
 
 #include "services/planner/core/planner.h"
 #include "libs/domain/team_field.h"
+#include "libs/geometry/rectangle.h"
 #include "libs/geometry/stadium.h"
 #include "libs/domain/world.h"
 
@@ -67,6 +68,18 @@ struct Zones {
 
 /// `p` moved (minimally, a few passes) out of every zone the intent asks to avoid and into the field.
 Vec2 project_out(const Vec2& p, const MotionIntent& intent, const Zones& zones);
+
+// ---- shared by the skill layers ----
+
+/// Where robot centres keep out of our (-x) / their (+x) defense area: grown by the zones' margin towards
+/// the field and sideways, and reaching behind the goal line into the goal and up to the wall.
+geom::Rectangle our_defense_zone(const Zones& zones);
+geom::Rectangle their_defense_zone(const Zones& zones);
+/// Where the intent lets a robot centre go: the field and field_margin beyond its lines, or, for a robot
+/// that may enter the boundary, up to wall_margin from the walls.
+geom::Rectangle allowed_area(const MotionIntent& intent, const Zones& zones);
+/// The intent's dribbler and kick (flat or chip) on `command`; its motion is left alone.
+void set_ball_actions(const MotionIntent& intent, RobotCommand& command);
 
 /// The skill layer: one robot, one tick.
 class MotionPlanner {

@@ -3,14 +3,10 @@
 #include <algorithm>
 #include <numbers>
 
-#include "libs/domain/keep_out.h"
 
 namespace ssl::planner {
 namespace {
 
-constexpr double kDribblerRpm = 3000;
-constexpr double kChipAngle = 0.6;              // rad
-constexpr double kDefenseZoneBehindGoal = 1.0;  // m, as the simple controller's zones
 constexpr double kArrived = 0.005;              // m: closer to the target than this, at rest, is there
 constexpr int kFreeTargetPasses = 3;            // moves of the target out of robots standing on it
 
@@ -38,50 +34,43 @@ void TrajectoryMotionPlanner::begin_tick() {
   }
 }
 
-PathObstacles TrajectoryMotionPlanner::obstacles_for(const wm::RobotState& robot, const MotionIntent& intent,
-                                                     const Zones& zones) {
-  PathObstacles obstacles;
-  robot_obstacles_ = 0;
+TrajectoryMotionPlanner::Obstacles TrajectoryMotionPlanner::obstacles_for(const wm::RobotState& robot,
+                                                                         const MotionIntent& intent,
+                                                                         const Zones& zones) const {
+  Obstacles out;
+  PathObstacles& obstacles = out.obstacles;
   const double touching = 2 * params_.robot_radius;
   const double our_speed = memory_[robot.id].velocity.norm();
   for (const ZoneRobot& other : zones.robots) {
     if (other.ours && other.id == robot.id) continue;
     if (other.ours) {
-      const Memory& planned = memory_.at(std::min<std::size_t>(other.id, memory_.size() - 1));
-      if (other.id < memory_.size() && planned.planned_this_tick && planned.planned) {
-        obstacles.paths.push_back({.path = planned.planned->path, .radius = touching + params_.our_margin});
+      const Memory* planned = other.id < memory_.size() ? &memory_[other.id] : nullptr;
+      if (planned && planned->planned_this_tick && planned->planned) {
+        obstacles.paths.push_back({.path = planned->planned->path, .radius = touching + params_.our_margin});
         continue;
       }
       obstacles.circles.push_back(
           {.position = other.position, .velocity = other.velocity, .radius = touching + params_.our_margin});
-      ++robot_obstacles_;
+      ++out.robots;
       continue;
     }
     obstacles.circles.push_back({.position = other.position,
                                  .velocity = other.velocity,
                                  .radius = touching + params_.their_margin +
                                            params_.their_margin_per_speed * our_speed});
-    ++robot_obstacles_;
+    ++out.robots;
   }
-  const FieldGeometry& field = zones.field.size();
-  if (intent.avoid_their_defense_area) {
-    obstacles.rectangles.push_back(defense_area_keep_out(field, +1, zones.their_defense_margin, kDefenseZoneBehindGoal));
-  }
-  if (intent.avoid_our_defense_area) {
-    obstacles.rectangles.push_back(defense_area_keep_out(field, -1, zones.our_defense_margin, kDefenseZoneBehindGoal));
-  }
+  if (intent.avoid_their_defense_area) obstacles.rectangles.push_back(their_defense_zone(zones));
+  if (intent.avoid_our_defense_area) obstacles.rectangles.push_back(our_defense_zone(zones));
   if (intent.avoid_placement_corridor && zones.placement_corridor) obstacles.stadiums.push_back(*zones.placement_corridor);
   if (intent.avoid_ball_radius > 0 && zones.ball) {
     obstacles.circles.push_back({.position = *zones.ball, .radius = intent.avoid_ball_radius});
   }
-  const double beyond = intent.may_enter_boundary ? field.boundary_width - zones.wall_margin : zones.field_margin;
-  obstacles.bounds = geom::Rectangle::from_center(Vec2::Zero(), field.field_length + 2 * beyond,
-                                                  field.field_width + 2 * beyond);
-  return obstacles;
+  obstacles.bounds = allowed_area(intent, zones);
+  return out;
 }
 
-Vec2 TrajectoryMotionPlanner::free_target(const wm::RobotState& robot, Vec2 target,
-                                          const PathObstacles& obstacles) const {
+Vec2 TrajectoryMotionPlanner::free_target(const wm::RobotState& robot, Vec2 target, const Obstacles& obstacles) {
   // Where another robot stands (an opponent now, one of ours where its path ends) no path can end without a
   // contact: stop at its edge instead, on our side of it.
   for (int pass = 0; pass < kFreeTargetPasses; ++pass) {
@@ -95,8 +84,10 @@ Vec2 TrajectoryMotionPlanner::free_target(const wm::RobotState& robot, Vec2 targ
       target = center + direction * radius;
       moved = true;
     };
-    for (std::size_t i = 0; i < robot_obstacles_; ++i) push_out(obstacles.circles[i].position, obstacles.circles[i].radius);
-    for (const PathCircle& other : obstacles.paths) push_out(other.path.destination(), other.radius);
+    for (std::size_t i = 0; i < obstacles.robots; ++i) {
+      push_out(obstacles.obstacles.circles[i].position, obstacles.obstacles.circles[i].radius);
+    }
+    for (const PathCircle& other : obstacles.obstacles.paths) push_out(other.path.destination(), other.radius);
     if (!moved) break;
   }
   return target;
@@ -130,13 +121,13 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   }
   const TrajectoryLimits limits{.max_speed = std::min(intent.max_speed, limits_.max_speed),
                                 .max_acceleration = limits_.max_acceleration};
-  const PathObstacles obstacles = obstacles_for(robot, intent, zones);
+  const Obstacles obstacles = obstacles_for(robot, intent, zones);
   const Vec2 target = free_target(robot, project_out(intent.target, intent, zones), obstacles);
   PathSearchParams search = params_.search;
   if (ticks_ % 2 == 1) search.direction_offset += std::numbers::pi / search.directions;
   // Until this command acts, the last one keeps driving the robot.
   const Vec2 start = robot.position + memory.velocity * params_.actuation_latency;
-  memory.planned = search_path(start, memory.velocity, target, limits, obstacles, search,
+  memory.planned = search_path(start, memory.velocity, target, limits, obstacles.obstacles, search,
                                memory.previous ? &*memory.previous : nullptr);
   const TrajectoryPath& path = memory.planned->path;
   Vec2 velocity = path.velocity(dt);
@@ -146,10 +137,7 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
       plan_rotation(robot.orientation, memory.angular, intent.orientation,
                     {.max_speed = limits_.max_angular_speed, .max_acceleration = limits_.max_angular_acceleration});
   command = to_local(robot.id, velocity, turn.velocity(dt), robot.orientation);
-  command.dribbler_rpm = intent.dribble ? kDribblerRpm : 0;
-  command.kick = intent.kick;
-  command.kick_speed = intent.kick == KickType::kNone ? 0 : intent.kick_speed;
-  command.chip_angle = intent.kick == KickType::kChip ? kChipAngle : 0;
+  set_ball_actions(intent, command);
   return command;
 }
 

@@ -60,16 +60,19 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
     std::optional<double> tracking_error;  // m, this tick
   };
 
-  /// Fills robot_obstacles_: the robots come first in `circles`.
-  PathObstacles obstacles_for(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones);
+  /// One robot's obstacles; the other robots come first in `obstacles.circles` (`robots` of them).
+  struct Obstacles {
+    PathObstacles obstacles;
+    std::size_t robots = 0;
+  };
+  Obstacles obstacles_for(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones) const;
   /// `target` moved out of any robot standing on it (our robots: where their planned paths end).
-  Vec2 free_target(const wm::RobotState& robot, Vec2 target, const PathObstacles& obstacles) const;
+  static Vec2 free_target(const wm::RobotState& robot, Vec2 target, const Obstacles& obstacles);
 
   MotionLimits limits_;
   TrajectoryMotionParams params_;
   std::array<Memory, wm::kMaxRobotsPerTeam> memory_{};
   std::uint64_t ticks_ = 0;
-  std::size_t robot_obstacles_ = 0;  // of the last obstacles_for()
 };
 
 }  // namespace ssl::planner
