@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
   double half = 300;
   std::uint64_t seed = 42;
   std::string robots = "both";
-  ssl::planner::MotionControl motion = ssl::planner::MotionControl::kSimple;
+  ssl::planner::MotionControl motion = ssl::planner::PlannerConfig().motion;
   for (int i = 1; i < argc; ++i) {
     const auto value = [&](const char* flag) -> const char* {
       if (i + 1 >= argc) {
@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
                   "  plays whole matches (two halves of S s of playing time, default 300, the built-in referee's\n"
                   "  simulation profile) of 6 v 6 (division B) and 11 v 11 (division A) in lockstep and prints the\n"
                   "  real-time factors, the closest two robots came and each match's report; --motion: both\n"
-                  "  teams' skill layer (default simple)\n");
+                  "  teams' skill layer (default trajectory, as the planner's)\n");
       return 0;
     }
     if (std::strcmp(argv[i], "--half") == 0) {

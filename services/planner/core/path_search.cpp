@@ -15,6 +15,11 @@ namespace {
 
 using geom::Vec2;
 
+/// m a destination may lie inside a zone's edge (where a target pushed out of the zone lands).
+constexpr double kEdgeTolerance = 0.001;
+/// m a robot starting inside a robot obstacle may come closer to it (numerical slack of a tangential move).
+constexpr double kNoDeeperTolerance = 0.001;
+
 /// The obstacles as the sweep uses them, prepared once per search: static shapes grown by the chord
 /// margin, and our planned robots' positions on the step grid (every candidate is swept on the same grid).
 struct Prepared {
@@ -25,31 +30,50 @@ struct Prepared {
   std::vector<geom::Rectangle> rectangles;
   std::vector<geom::Stadium> stadiums;
   std::vector<std::vector<Vec2>> path_positions;  // [obstacle][k]: at k * step
-  std::vector<char> inside_at_start;              // circles, paths, rectangles, stadiums, bounds
+  std::vector<char> inside_at_start;              // rectangles, stadiums, bounds
+  // Circles, then paths: the radius a step must not come inside. A robot that starts inside a robot
+  // obstacle's radius (its margin grew with our speed, or it was pushed) must not come any deeper: the
+  // obstacle shrinks to just below the starting distance, so leaving or passing at the same distance is free.
+  std::vector<double> robot_reach;
 
   /// Our planned robot `obstacle` at step k of a sweep (time t: k * step, or the path's end).
   Vec2 path_position(std::size_t obstacle, std::size_t k, double t) const {
     const std::vector<Vec2>& grid = path_positions[obstacle];
     if (k < grid.size() && std::abs(t - static_cast<double>(k) * step) < 1e-9) return grid[k];
-    return obstacles->paths[obstacle].path.position(t);
+    return obstacles->paths[obstacle].position(t);
   }
 };
 
-Prepared prepare(const Vec2& start, const PathObstacles& obstacles, double step, double horizon, double margin) {
+Prepared prepare(const Vec2& start, const Vec2& destination, const PathObstacles& obstacles, double step,
+                 double horizon, double margin) {
   Prepared prepared{.obstacles = &obstacles, .step = step, .horizon = horizon, .margin = margin};
-  for (const geom::Rectangle& r : obstacles.rectangles) prepared.rectangles.push_back(r.expanded(margin));
-  for (const geom::Stadium& s : obstacles.stadiums) prepared.stadiums.push_back({s.spine, s.radius + margin});
+  // A destination on the edge of a zone (a target pushed out of it stops right there) lies inside the grown
+  // zone: that zone is checked without the chord margin, less kEdgeTolerance (the robot brakes into the
+  // destination, its curve hardly leaves the chords there).
+  for (const geom::Rectangle& r : obstacles.rectangles) {
+    const geom::Rectangle grown = r.expanded(margin);
+    prepared.rectangles.push_back(grown.contains(destination) ? r.expanded(-kEdgeTolerance) : grown);
+  }
+  for (const geom::Stadium& s : obstacles.stadiums) {
+    const geom::Stadium grown{s.spine, s.radius + margin};
+    prepared.stadiums.push_back(geom::contains(grown, destination) ? geom::Stadium{s.spine, s.radius - kEdgeTolerance}
+                                                                   : grown);
+  }
   const auto steps = static_cast<std::size_t>(std::ceil(horizon / step)) + 1;
   for (const PathCircle& c : obstacles.paths) {
     std::vector<Vec2>& grid = prepared.path_positions.emplace_back();
     grid.reserve(steps);
-    for (std::size_t k = 0; k < steps; ++k) grid.push_back(c.path.position(k * step));
+    for (std::size_t k = 0; k < steps; ++k) grid.push_back(c.position(k * step));
   }
+  std::vector<double>& reach = prepared.robot_reach;
+  reach.reserve(obstacles.circles.size() + obstacles.paths.size());
+  const auto reach_of = [&](double distance, double radius) {
+    return distance < radius + margin ? std::max(0.0, distance - kNoDeeperTolerance) : radius + margin;
+  };
+  for (const MovingCircle& c : obstacles.circles) reach.push_back(reach_of((start - c.position).norm(), c.radius));
+  for (const PathCircle& c : obstacles.paths) reach.push_back(reach_of((start - c.position(0)).norm(), c.radius));
   std::vector<char>& inside = prepared.inside_at_start;
-  inside.reserve(obstacles.circles.size() + obstacles.paths.size() + obstacles.rectangles.size() +
-                 obstacles.stadiums.size() + 1);
-  for (const MovingCircle& c : obstacles.circles) inside.push_back((start - c.position).norm() < c.radius);
-  for (const PathCircle& c : obstacles.paths) inside.push_back((start - c.path.position(0)).norm() < c.radius);
+  inside.reserve(obstacles.rectangles.size() + obstacles.stadiums.size() + 1);
   for (const geom::Rectangle& r : obstacles.rectangles) inside.push_back(r.contains(start));
   for (const geom::Stadium& st : obstacles.stadiums) inside.push_back(geom::contains(st, start));
   inside.push_back(obstacles.bounds && !obstacles.bounds->contains(start));
@@ -110,28 +134,26 @@ std::optional<double> sweep(const TrajectoryPath& path, const Prepared& prepared
   const auto keep = [&](const std::optional<double>& hit) {
     if (hit) earliest = std::min(earliest, *hit);
   };
-  std::size_t index = 0;
+  const auto never_left = [](std::size_t) { return false; };
+  std::size_t robot = 0;
   for (const MovingCircle& c : obstacles.circles) {
-    const char escaping = prepared.inside_at_start[index++];
-    const double reach = c.radius + margin;
-    if (!escaping && misses_box(c.position, c.position + c.velocity * end, reach)) continue;
-    const auto relative = [&](std::size_t k) { return Vec2(points[k] - (c.position + c.velocity * times[k])); };
+    const geom::Circle reach{Vec2::Zero(), prepared.robot_reach[robot++]};
+    if (misses_box(c.position, c.position_at(end), reach.radius)) continue;
+    const auto relative = [&](std::size_t k) { return Vec2(points[k] - c.position_at(times[k])); };
     keep(first_hit(
-        steps, times, earliest, escaping,
-        [&](std::size_t k) { return geom::intersects(geom::Segment{relative(k), relative(k + 1)}, geom::Circle{Vec2::Zero(), reach}); },
-        [&](std::size_t k) { return relative(k + 1).norm() >= c.radius; }));
+        steps, times, earliest, 0,
+        [&](std::size_t k) { return geom::intersects(geom::Segment{relative(k), relative(k + 1)}, reach); },
+        never_left));
   }
   for (std::size_t i = 0; i < obstacles.paths.size(); ++i) {
-    const char escaping = prepared.inside_at_start[index++];
-    const double radius = obstacles.paths[i].radius;
+    const geom::Circle reach{Vec2::Zero(), prepared.robot_reach[robot++]};
     const auto relative = [&](std::size_t k) { return Vec2(points[k] - prepared.path_position(i, k, times[k])); };
     keep(first_hit(
-        steps, times, earliest, escaping,
-        [&](std::size_t k) {
-          return geom::intersects(geom::Segment{relative(k), relative(k + 1)}, geom::Circle{Vec2::Zero(), radius + margin});
-        },
-        [&](std::size_t k) { return relative(k + 1).norm() >= radius; }));
+        steps, times, earliest, 0,
+        [&](std::size_t k) { return geom::intersects(geom::Segment{relative(k), relative(k + 1)}, reach); },
+        never_left));
   }
+  std::size_t index = 0;
   for (std::size_t i = 0; i < prepared.rectangles.size(); ++i) {
     const char escaping = prepared.inside_at_start[index++];
     const geom::Rectangle& grown = prepared.rectangles[i];
@@ -164,6 +186,8 @@ std::optional<double> sweep(const TrajectoryPath& path, const Prepared& prepared
 
 /// Sub-destinations closer to the robot than this (m) are not tried.
 constexpr double kMinViaDistance = 0.15;
+/// s: a previous path whose switch is nearer than this is continued as the direct path.
+constexpr double kMinSwitchAhead = 0.02;
 
 double score_of(double duration, const std::optional<double>& collision, const PathSearchParams& params) {
   if (!collision) return duration;
@@ -185,7 +209,7 @@ Vec2 TrajectoryPath::velocity(double t) const {
 
 std::optional<double> first_collision(const TrajectoryPath& path, const PathObstacles& obstacles, double step,
                                       double horizon, double margin) {
-  const Prepared prepared = prepare(path.position(0), obstacles, step, horizon, margin);
+  const Prepared prepared = prepare(path.position(0), path.destination(), obstacles, step, horizon, margin);
   std::vector<Vec2> points;
   std::vector<double> times;
   return sweep(path, prepared, points, times);
@@ -193,10 +217,10 @@ std::optional<double> first_collision(const TrajectoryPath& path, const PathObst
 
 PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& destination,
                        const TrajectoryLimits& limits, const PathObstacles& obstacles,
-                       const PathSearchParams& params, const TrajectoryPath* previous) {
+                       const PathSearchParams& params, const TrajectoryPath* previous, double previous_age) {
   // Between two checks the robot's curve stays within a * step^2 / 8 of the chord that is checked.
   const double chord_margin = limits.max_acceleration * params.step * params.step / 8;
-  const Prepared prepared = prepare(position, obstacles, params.step, params.horizon, chord_margin);
+  const Prepared prepared = prepare(position, destination, obstacles, params.step, params.horizon, chord_margin);
   std::vector<Vec2> points;
   std::vector<double> times;
   PathResult best;
@@ -217,33 +241,49 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
       have_best = true;
     }
   };
-  const auto through = [&](const Vec2& via, bool is_previous) {
-    if (obstacles.bounds && !obstacles.bounds->contains(via)) return;
-    // A sub-destination the robot is already at is no detour: the path would stop there first, and kept
-    // from tick to tick it would never leave.
-    if ((via - position).norm() < kMinViaDistance) return;
+  // Towards `via`, left at `switch_time` (or on arrival) for the destination.
+  const auto via_path = [&](const Trajectory2D& first, const Vec2& via, double switch_time) {
+    if (switch_time >= first.duration()) {
+      return TrajectoryPath(first, first.duration(), Trajectory2D::plan(via, Vec2::Zero(), destination, limits));
+    }
+    return TrajectoryPath(first, switch_time,
+                          Trajectory2D::plan(first.position(switch_time), first.velocity(switch_time), destination,
+                                             limits));
+  };
+  const auto usable_via = [&](const Vec2& via) {
+    // A sub-destination the robot is already at is no detour: the path would stop there first.
+    return (!obstacles.bounds || obstacles.bounds->contains(via)) && (via - position).norm() >= kMinViaDistance;
+  };
+  const auto through = [&](const Vec2& via) {
+    if (!usable_via(via)) return;
     const Trajectory2D first = Trajectory2D::plan(position, velocity, via, limits);
     for (const double switch_time : params.switch_times) {
-      if (switch_time >= first.duration()) {
-        consider(TrajectoryPath(first, first.duration(), Trajectory2D::plan(via, Vec2::Zero(), destination, limits)),
-                 is_previous);
-        break;
-      }
-      consider(TrajectoryPath(first, switch_time, Trajectory2D::plan(first.position(switch_time),
-                                                                      first.velocity(switch_time), destination,
-                                                                      limits)),
-               is_previous);
+      consider(via_path(first, via, switch_time), false);
+      if (switch_time >= first.duration()) break;
     }
   };
 
+  // Last tick's path as it goes on: through its sub-destination until its switch, which comes closer every
+  // tick; once passed, it is the direct path.
+  const bool previous_switch_ahead =
+      previous && !previous->is_direct() && previous->switch_time() - previous_age > kMinSwitchAhead;
   consider(TrajectoryPath(Trajectory2D::plan(position, velocity, destination, limits)),
-           previous && previous->is_direct());
-  if (previous && !previous->is_direct()) through(previous->via(), true);
+           previous && !previous_switch_ahead);
+  if (previous_switch_ahead && usable_via(previous->via())) {
+    const Trajectory2D first = Trajectory2D::plan(position, velocity, previous->via(), limits);
+    consider(via_path(first, previous->via(), previous->switch_time() - previous_age), true);
+  }
   if (best.first_collision) {
     for (const double radius : params.radii) {
       for (int i = 0; i < params.directions; ++i) {
         const double angle = params.direction_offset + 2 * std::numbers::pi * i / params.directions;
-        through(position + radius * Vec2(std::cos(angle), std::sin(angle)), false);
+        through(position + radius * Vec2(std::cos(angle), std::sin(angle)));
+      }
+    }
+    for (const double radius : params.destination_radii) {
+      for (int i = 0; i < params.directions; ++i) {
+        const double angle = params.direction_offset + 2 * std::numbers::pi * i / params.directions;
+        through(destination + radius * Vec2(std::cos(angle), std::sin(angle)));
       }
     }
   }

@@ -1,13 +1,14 @@
 // Path search for one robot among obstacles, on time-optimal trajectories (trajectory.h).
 //
 // Candidates: the direct trajectory to the destination, and for each sub-destination sampled around the
-// robot (directions x radii) the trajectory towards it, left at one of a few switch times for a trajectory
+// robot and around the destination (directions x radii) the trajectory towards it, left at one of a few switch times for a trajectory
 // from that state on to the destination. The best path of the last tick is a candidate too (re-planned from
 // the current state through the same sub-destination), so plans do not flicker. Each candidate is swept
 // in fixed time steps against every obstacle: between two steps the robot's move relative to a (moving)
 // obstacle is a segment, so a fast robot cannot jump over one. Score = arrival time, plus, when the path
-// collides, a penalty that is larger the sooner the first collision comes (see PathSearchParams). An obstacle the robot stands
-// in at the start counts only once the path has left it (leaving it is always allowed).
+// collides, a penalty that is larger the sooner the first collision comes (see PathSearchParams). A static
+// zone the robot stands in at the start counts only once the path has left it (leaving it is always
+// allowed); a robot obstacle whose radius the robot starts inside must not be come any closer to.
 //
 // Everything is in one frame (the planner's team frame), metres and seconds from now. Pure: no clocks.
 //
@@ -17,6 +18,8 @@
 //   Vec2 reference = path.path.position(0.05);
 #pragma once
 
+#include <algorithm>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -42,6 +45,8 @@ class TrajectoryPath {
   /// The sub-destination the first trajectory heads for (the destination for a direct path).
   geom::Vec2 via() const { return first_.target(); }
   bool is_direct() const { return !second_.has_value(); }
+  /// s from the start at which the second trajectory takes over (0 for a direct path).
+  double switch_time() const { return switch_time_; }
 
  private:
   Trajectory2D first_;
@@ -49,17 +54,24 @@ class TrajectoryPath {
   double switch_time_ = 0;
 };
 
-/// A disc moving at constant velocity (a robot; `radius`: the sum of both robots' radii plus any margin).
+/// A disc moving at constant velocity for `moving_for` s, then standing (a robot; `radius`: the sum of both
+/// robots' radii plus any margin). A measured velocity says little about where a robot is seconds later.
 struct MovingCircle {
   geom::Vec2 position = geom::Vec2::Zero();
   geom::Vec2 velocity = geom::Vec2::Zero();
   double radius = 0;
+  double moving_for = std::numeric_limits<double>::infinity();  // s
+
+  geom::Vec2 position_at(double t) const { return position + velocity * std::min(t, moving_for); }
 };
 
-/// A disc following a planned path (one of our robots planned earlier this tick).
+/// A disc following a planned path (one of our robots: planned earlier this tick, or last tick).
 struct PathCircle {
   TrajectoryPath path;
   double radius = 0;
+  double elapsed = 0;  // s of the path already driven now (a path planned last tick: one tick)
+
+  geom::Vec2 position(double t) const { return path.position(t + elapsed); }
 };
 
 struct PathObstacles {
@@ -74,6 +86,9 @@ struct PathSearchParams {
   int directions = 16;                              // sub-destinations on each ring
   double direction_offset = 0;                      // rad, where on each ring the first one lies
   std::vector<double> radii = {0.5, 1.0, 2.0};  // m, rings around the robot
+  // m, rings around the destination: the way in to a destination close to obstacles (the placer getting
+  // behind a ball in a corner, next to a robot) is rarely on a ring around the robot.
+  std::vector<double> destination_radii = {0.4};
   std::vector<double> switch_times = {0.2, 0.5};    // s along the first trajectory
   double step = 0.1;  // s between collision checks (swept chords; obstacles grown by a * step^2 / 8 to cover the curve)
   double horizon = 3.0;                             // s: collisions later than this are not looked for
@@ -100,10 +115,13 @@ struct PathResult {
 std::optional<double> first_collision(const TrajectoryPath& path, const PathObstacles& obstacles, double step,
                                       double horizon, double margin = 0);
 
-/// The best path from (`position`, `velocity`) to rest at `destination`. `previous`: last tick's choice
-/// for this robot (its sub-destination is tried again).
+/// The best path from (`position`, `velocity`) to rest at `destination`. `previous`: the choice of an
+/// earlier tick, `previous_age` s ago: it is tried again as it goes on from now (through the same
+/// sub-destination, switching when it would have), not started afresh, so it cannot pull the robot
+/// towards its sub-destination for ever.
 PathResult search_path(const geom::Vec2& position, const geom::Vec2& velocity, const geom::Vec2& destination,
                        const TrajectoryLimits& limits, const PathObstacles& obstacles,
-                       const PathSearchParams& params = {}, const TrajectoryPath* previous = nullptr);
+                       const PathSearchParams& params = {}, const TrajectoryPath* previous = nullptr,
+                       double previous_age = 0);
 
 }  // namespace ssl::planner

@@ -96,7 +96,7 @@ enum class MotionControl { kSimple, kTrajectory };
 struct PlannerConfig {
   TeamColor team = TeamColor::kBlue;
   MotionLimits limits;
-  MotionControl motion = MotionControl::kSimple;
+  MotionControl motion = MotionControl::kTrajectory;
   // s from the planner's tick until its command acts on the robot (DDS, robot_link, radio): the trajectory
   // skill layer plans from where the last command will have taken the robot by then. world.state is
   // already predicted to now (world_model compensates the vision delay).

@@ -492,9 +492,7 @@ TEST(PlannerDebugTest, TrajectoriesReportTheirPathAndTrackingError) {
   Script script(side);
   script.default_teams();
   script.command(RefereeCommand::kStop);
-  PlannerConfig config = testing::config_for(side);
-  config.motion = MotionControl::kTrajectory;
-  Planner planner(config);
+  Planner planner(testing::config_for(side));  // trajectories are the default skill layer
   const PlannerOutput first = planner.step(script.inputs(), testing::at_tick(0));
   ASSERT_FALSE(first.roles.empty());
   bool some_path = false;
@@ -515,7 +513,9 @@ TEST(PlannerDebugTest, TrajectoriesReportTheirPathAndTrackingError) {
     EXPECT_LT(*role.tracking_error, 0.01) << "one tick of a trajectory from rest is less than a centimetre";
   }
 
-  Planner simple(testing::config_for(side));
+  PlannerConfig simple_config = testing::config_for(side);
+  simple_config.motion = MotionControl::kSimple;
+  Planner simple(simple_config);
   for (const RoleInfo& role : simple.step(script.inputs(), testing::at_tick(0)).roles) {
     EXPECT_TRUE(role.path.empty());
     EXPECT_FALSE(role.tracking_error);

@@ -199,25 +199,32 @@ Formation their_kickoff_set(const Situation& s) {
   return f;
 }
 
-/// A line across the field at `x`, spreading from y = 0 outwards.
-Formation line_set(const Situation& s, double x, std::string_view role) {
+/// A line across the field at `x`, spreading from y = 0 outwards, or (`staggered`) from half a spacing
+/// either side of it. Robots stand far enough apart that another can pass between two of them.
+Formation line_set(const Situation& s, double x, std::string_view role, bool staggered) {
   Formation f;
-  const double spacing = 2 * radius(s) + 0.25;
+  const double spacing = 2 * radius(s) + 0.8;
   const double max_y = s.field.half_width() - radius(s) - 0.1;
   for (std::size_t k = 0; k < kMaxSlots; ++k) {
-    const double step = static_cast<double>((k + 1) / 2) * spacing;
-    const double y = (k % 2 == 0) ? step : -step;
+    const double rank = staggered ? static_cast<double>(k / 2) + 0.5 : static_cast<double>((k + 1) / 2);
+    const double y = (k % 2 == 0) ? rank * spacing : -rank * spacing;
     if (std::abs(y) > max_y) {
       f.add({x + (x < 0 ? -1.0 : 1.0) * 0.4, std::clamp(y * 0.5, -max_y, max_y)}, role);
     } else {
-      f.add({x, k == 0 ? 0.0 : y}, role);
+      f.add({x, y}, role);
     }
   }
   return f;
 }
 
-double penalty_line_offset(const Situation& s) {
-  return s.config->penalty_line_behind + radius(s) + s.config->keep_away_margin + 0.05;
+/// m from the ball to the line of the robots waiting behind a penalty kick. Both teams wait on the same
+/// side of the ball, so the defending team stands one row further back and staggered: the two lines never
+/// claim the same spots, and a robot of either can walk between two of the other's (an opponent's robot on
+/// one of our spots still pushes that slot aside, see fill()).
+constexpr double kDefendingPenaltyRow = 0.4;
+double penalty_line_offset(const Situation& s, bool attacking) {
+  return s.config->penalty_line_behind + radius(s) + s.config->keep_away_margin + 0.05 +
+         (attacking ? 0.0 : kDefendingPenaltyRow);
 }
 
 Formation park_set(const Situation& s) {
@@ -239,11 +246,20 @@ void fill(const Situation& s, PlayMemory& memory, std::uint32_t key, Formation f
   }
   if (ids.count == 0) return;
   const std::size_t n = std::min(f.count, ids.count);
-  // The slots that will be used, legal first, then kept apart so that two robots do not share a spot.
+  // The slots that will be used, legal first, then kept apart so that two robots do not share a spot, and
+  // off the spots opponents stand on (their formation may want the same places: a penalty's lines).
   std::array<Vec2, kMaxSlots> targets{};
   for (std::size_t i = 0; i < n; ++i) targets[i] = project_out(f.slots[i].position, tmpl, s.zones);
   const double min_gap = 2 * radius(s) + 0.08;
   for (int pass = 0; pass < 3; ++pass) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (const wm::RobotState& enemy : s.enemies) {
+        const Vec2 d = targets[i] - enemy.position;
+        const double dist = d.norm();
+        if (dist >= min_gap) continue;
+        targets[i] = enemy.position + (dist > 1e-9 ? Vec2(d / dist) : Vec2(0, 1)) * (min_gap + 0.005);
+      }
+    }
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = i + 1; j < n; ++j) {
         const Vec2 d = targets[j] - targets[i];
@@ -366,10 +382,10 @@ void stop_with_next(const Situation& s, PlayMemory& memory, TeamIntents& out, co
   } else if (their_kickoff) {
     fill(s, memory, kTheirKickoffKey, their_kickoff_set(s), tmpl, reserved, out);
   } else if (our_penalty) {
-    fill(s, memory, kOurPenaltyKey, line_set(s, s.ball.x() - penalty_line_offset(s), "penalty_line"), tmpl,
+    fill(s, memory, kOurPenaltyKey, line_set(s, s.ball.x() - penalty_line_offset(s, true), "penalty_line", false), tmpl,
          reserved, out);
   } else if (their_penalty) {
-    fill(s, memory, kTheirPenaltyKey, line_set(s, s.ball.x() + penalty_line_offset(s), "penalty_line"), tmpl,
+    fill(s, memory, kTheirPenaltyKey, line_set(s, s.ball.x() + penalty_line_offset(s, false), "penalty_line", true), tmpl,
          reserved, out);
   } else if (our_free) {
     fill(s, memory, kAttackKey, attack_set(s), tmpl, reserved, out);
@@ -654,7 +670,7 @@ void play_our_penalty(const Situation& s, PlayMemory& memory, TeamIntents& out) 
   Ids reserved;
   write_keeper(s, tmpl, false, reserved, out);
   take_prepared_kick(s, memory, "penalty", 0.12, reserved, out);
-  fill(s, memory, kOurPenaltyKey, line_set(s, s.ball.x() - penalty_line_offset(s), "penalty_line"), tmpl,
+  fill(s, memory, kOurPenaltyKey, line_set(s, s.ball.x() - penalty_line_offset(s, true), "penalty_line", false), tmpl,
        reserved, out);
 }
 
@@ -670,7 +686,7 @@ void play_their_penalty(const Situation& s, PlayMemory& memory, TeamIntents& out
     MotionIntent& keeper = out.robots[*s.keeper];
     keeper.target.y() = 0;
   }
-  fill(s, memory, kTheirPenaltyKey, line_set(s, s.ball.x() + penalty_line_offset(s), "penalty_line"), tmpl,
+  fill(s, memory, kTheirPenaltyKey, line_set(s, s.ball.x() + penalty_line_offset(s, false), "penalty_line", true), tmpl,
        reserved, out);
 }
 

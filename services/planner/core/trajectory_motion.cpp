@@ -1,6 +1,9 @@
 #include "services/planner/core/trajectory_motion.h"
 
+#include "libs/geometry/contains.h"
+
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 
@@ -9,6 +12,11 @@ namespace {
 
 constexpr double kArrived = 0.005;              // m: closer to the target than this, at rest, is there
 constexpr int kFreeTargetPasses = 3;            // moves of the target out of robots standing on it
+// m beyond a robot obstacle's radius for a moved target: the sweep grows obstacles by its chord margin
+// (a few mm), and a path ending exactly on the radius would count as a collision at its end.
+constexpr double kFreeTargetClearance = 0.01;
+constexpr double kInsideZone = 0.005;     // m a robot centre may be inside a zone before it leaves it first
+constexpr double kExitOvershoot = 0.05;   // m beyond a zone's edge that a robot leaving it heads for
 
 }  // namespace
 
@@ -36,11 +44,10 @@ void TrajectoryMotionPlanner::begin_tick() {
 
 TrajectoryMotionPlanner::Obstacles TrajectoryMotionPlanner::obstacles_for(const wm::RobotState& robot,
                                                                          const MotionIntent& intent,
-                                                                         const Zones& zones) const {
+                                                                         const Zones& zones, double dt) const {
   Obstacles out;
   PathObstacles& obstacles = out.obstacles;
   const double touching = 2 * params_.robot_radius;
-  const double our_speed = memory_[robot.id].velocity.norm();
   for (const ZoneRobot& other : zones.robots) {
     if (other.ours && other.id == robot.id) continue;
     if (other.ours) {
@@ -49,15 +56,22 @@ TrajectoryMotionPlanner::Obstacles TrajectoryMotionPlanner::obstacles_for(const 
         obstacles.paths.push_back({.path = planned->planned->path, .radius = touching + params_.our_margin});
         continue;
       }
-      obstacles.circles.push_back(
-          {.position = other.position, .velocity = other.velocity, .radius = touching + params_.our_margin});
+      // Not planned yet this tick: it will mostly go on along last tick's path (now one tick along).
+      if (planned && planned->previous) {
+        obstacles.paths.push_back({.path = *planned->previous, .radius = touching + params_.our_margin, .elapsed = dt});
+        continue;
+      }
+      obstacles.circles.push_back({.position = other.position,
+                                   .velocity = other.velocity,
+                                   .radius = touching + params_.our_margin,
+                                   .moving_for = params_.robot_prediction});
       ++out.robots;
       continue;
     }
     obstacles.circles.push_back({.position = other.position,
                                  .velocity = other.velocity,
-                                 .radius = touching + params_.their_margin +
-                                           params_.their_margin_per_speed * our_speed});
+                                 .radius = touching + params_.their_margin,
+                                 .moving_for = params_.robot_prediction});
     ++out.robots;
   }
   if (intent.avoid_their_defense_area) obstacles.rectangles.push_back(their_defense_zone(zones));
@@ -77,11 +91,11 @@ Vec2 TrajectoryMotionPlanner::free_target(const wm::RobotState& robot, Vec2 targ
     bool moved = false;
     const auto push_out = [&](const Vec2& center, double radius) {
       const Vec2 away = target - center;
-      if (away.norm() >= radius) return;
+      if (away.norm() >= radius + kFreeTargetClearance) return;
       Vec2 direction = geom::normalized_or_zero(away);
       if (direction.squaredNorm() == 0) direction = geom::normalized_or_zero(Vec2(robot.position - center));
       if (direction.squaredNorm() == 0) direction = Vec2(-1, 0);
-      target = center + direction * radius;
+      target = center + direction * (radius + kFreeTargetClearance);
       moved = true;
     };
     for (std::size_t i = 0; i < obstacles.robots; ++i) {
@@ -91,6 +105,30 @@ Vec2 TrajectoryMotionPlanner::free_target(const wm::RobotState& robot, Vec2 targ
     if (!moved) break;
   }
   return target;
+}
+
+Vec2 TrajectoryMotionPlanner::guarded(const wm::RobotState& robot, Vec2 velocity, const Zones& zones) const {
+  const double touching = 2 * params_.robot_radius + params_.guard_margin;
+  const double a = params_.guard_deceleration;
+  const double tau = params_.guard_latency;
+  for (const ZoneRobot& other : zones.robots) {
+    if (other.ours && other.id == robot.id) continue;
+    const Vec2 offset = other.position - robot.position;
+    const double distance = offset.norm();
+    if (distance < 1e-9) continue;
+    const Vec2 toward = offset / distance;
+    const double approach = velocity.dot(toward);
+    if (approach <= 0) continue;
+    // Largest v with v * tau + v^2 / (2 a) <= our share of the gap: stops short of the margin, even when
+    // the other robot, moving away at w, brakes as hard as a robot can (it still goes w^2 / (2 b) further),
+    // or comes towards us doing the same (each robot keeps to half the gap).
+    const double away = std::max(0.0, other.velocity.dot(toward));
+    const double gap = std::max(0.0, distance - touching) + away * away / (2 * params_.guard_other_braking);
+    const double share = gap / 2;
+    const double allowed = a * (std::sqrt(tau * tau + 2 * share / a) - tau);
+    if (approach > allowed) velocity -= (approach - allowed) * toward;
+  }
+  return velocity;
 }
 
 void TrajectoryMotionPlanner::describe(std::uint32_t id, double step, std::vector<Vec2>& path,
@@ -121,17 +159,31 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   }
   const TrajectoryLimits limits{.max_speed = std::min(intent.max_speed, limits_.max_speed),
                                 .max_acceleration = limits_.max_acceleration};
-  const Obstacles obstacles = obstacles_for(robot, intent, zones);
-  const Vec2 target = free_target(robot, project_out(intent.target, intent, zones), obstacles);
+  const Obstacles obstacles = obstacles_for(robot, intent, zones, dt);
+  // A robot inside a defense area or the placement corridor it must keep out of leaves it first, the
+  // shortest way: the rules' grace is short. (Out of the ball's circle the search finds the way: the
+  // shortest one may lead into the wrong half at a kickoff.) Otherwise the target: off robots standing on
+  // it, but never into a rule zone for it (the path then stops short of the robot, or waits for it).
+  const bool must_leave =
+      (intent.avoid_their_defense_area && their_defense_zone(zones).contains(robot.position)) ||
+      (intent.avoid_our_defense_area && our_defense_zone(zones).contains(robot.position)) ||
+      (intent.avoid_placement_corridor && zones.placement_corridor &&
+       geom::contains(*zones.placement_corridor, robot.position));
+  const Vec2 exit = project_out(robot.position, intent, zones);
+  const Vec2 target =
+      must_leave && (exit - robot.position).norm() > kInsideZone
+          ? Vec2(exit + geom::normalized_or_zero(Vec2(exit - robot.position)) * kExitOvershoot)
+          : project_out(free_target(robot, project_out(intent.target, intent, zones), obstacles), intent, zones);
   PathSearchParams search = params_.search;
   if (ticks_ % 2 == 1) search.direction_offset += std::numbers::pi / search.directions;
   // Until this command acts, the last one keeps driving the robot.
   const Vec2 start = robot.position + memory.velocity * params_.actuation_latency;
   memory.planned = search_path(start, memory.velocity, target, limits, obstacles.obstacles, search,
-                               memory.previous ? &*memory.previous : nullptr);
+                               memory.previous ? &*memory.previous : nullptr, dt);
   const TrajectoryPath& path = memory.planned->path;
   Vec2 velocity = path.velocity(dt);
   if ((target - robot.position).norm() < kArrived && velocity.norm() < 0.05) velocity = Vec2::Zero();
+  velocity = guarded(robot, velocity, zones);
 
   const Trajectory1D turn =
       plan_rotation(robot.orientation, memory.angular, intent.orientation,

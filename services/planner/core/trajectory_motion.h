@@ -4,13 +4,15 @@
 //
 // Obstacles of one robot, in the TEAM frame:
 //   * our robots planned earlier this tick: their paths (robots are planned in priority order);
-//     our robots not planned yet: where their velocity takes them;
-//   * opponents: where their velocity takes them, with a margin that grows with our speed, so that a
-//     contact is never faster than the league's crash limit on our side;
+//     our robots not planned yet: last tick's paths, or without one where their velocity takes them;
+//   * opponents: where their velocity takes them (for robot_prediction s, then standing), with a margin;
 //   * the intent's rule zones: both defense areas, the placement corridor, the ball's keep-out circle,
 //     and the field (or, for the placer, the walls) as bounds.
-// The command is the path's velocity one tick ahead, in the robot's LOCAL frame; the heading follows its
-// own trajectory the short way round.
+// A robot inside a defense area or the placement corridor it must avoid first leaves it the shortest way.
+// The command is the path's velocity one tick ahead, capped by the contact guard (the speed-dependent
+// margin: towards any robot no faster than still stops us short of it, so that a contact is never ours to
+// blame under the league's crash rule), in the robot's LOCAL frame; the heading follows its own trajectory
+// the short way round.
 //
 //   TrajectoryMotionPlanner motion(limits);
 //   motion.begin_tick();
@@ -29,8 +31,17 @@ struct TrajectoryMotionParams {
   double robot_radius = 0.09;          // m, ours and theirs
   double actuation_latency = 0;        // s until a command acts: plans start where the last one takes us
   double our_margin = 0.03;            // m between two of our robots
-  double their_margin = 0.05;          // m between us and an opponent at rest
-  double their_margin_per_speed = 0.1;  // s: more margin per m/s of our speed (an opponent may move)
+  double their_margin = 0.05;          // m between us and an opponent
+  double robot_prediction = 0.5;       // s a robot's measured velocity is extrapolated; then it stands
+  // The contact guard, last before the command goes out: towards any robot, our speed may not exceed what
+  // still stops us (after guard_latency at guard_deceleration) within half the gap that is left
+  // guard_margin short of touching it, even if that robot, moving away, brakes at guard_other_braking.
+  // Two robots that both keep it never touch, whatever each predicts of the other; only a robot driving
+  // into another can still touch it.
+  double guard_margin = 0.03;          // m beyond two radii
+  double guard_latency = 0.06;         // s until a command acts (vision delay, pipeline, one tick)
+  double guard_deceleration = 2.5;     // m/s^2 the guard counts on (below the robots' limit)
+  double guard_other_braking = 6.0;    // m/s^2: the hardest a robot ahead of us may brake
   // Sub-destinations per ring and tick; successive ticks turn the rings by half the spacing, so that two
   // ticks try twice as many directions (last tick's best is always tried again).
   PathSearchParams search = {.directions = 8};
@@ -65,7 +76,11 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
     PathObstacles obstacles;
     std::size_t robots = 0;
   };
-  Obstacles obstacles_for(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones) const;
+  /// `dt`: the tick period (how far along last tick's paths our robots not planned yet are now).
+  Obstacles obstacles_for(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones,
+                          double dt) const;
+  /// `velocity` (team frame, m/s) of `robot` limited by the contact guard against every other robot.
+  Vec2 guarded(const wm::RobotState& robot, Vec2 velocity, const Zones& zones) const;
   /// `target` moved out of any robot standing on it (our robots: where their planned paths end).
   static Vec2 free_target(const wm::RobotState& robot, Vec2 target, const Obstacles& obstacles);
 

@@ -39,7 +39,8 @@ TEST(TrajectoryMotion, ATargetAnOpponentStandsOnMovesToItsEdge) {
   motion.describe(1, 0.1, path, error);
   ASSERT_FALSE(path.empty());
   const double apart = (path.back() - Vec2(0.05, 0)).norm();
-  EXPECT_NEAR(apart, 2 * 0.09 + 0.05, 1e-9) << "the opponent's edge, at rest: two radii and the margin";
+  EXPECT_NEAR(apart, 2 * 0.09 + 0.05 + 0.01, 1e-9)
+      << "the opponent's edge, at rest: two radii, the margin and 1 cm beyond the sweep's chord margin";
   EXPECT_LT(path.back().x(), 0.05) << "on our side of it";
 }
 
