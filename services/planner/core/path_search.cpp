@@ -29,7 +29,7 @@ struct Prepared {
   double margin = 0;
   std::vector<geom::Rectangle> rectangles;
   std::vector<geom::Stadium> stadiums;
-  std::vector<std::vector<Vec2>> path_positions;  // [obstacle][k]: at k * step
+  std::vector<std::shared_ptr<const PathSamples>> path_samples;  // [obstacle]: the sweep's grid
   std::vector<char> inside_at_start;              // rectangles, stadiums, bounds
   // Circles, then paths: the radius a step must not come inside. A robot that starts inside a robot
   // obstacle's radius (its margin grew with our speed, or it was pushed) must not come any deeper: the
@@ -38,7 +38,7 @@ struct Prepared {
 
   /// Our planned robot `obstacle` at step k of a sweep (time t: k * step, or the path's end).
   Vec2 path_position(std::size_t obstacle, std::size_t k, double t) const {
-    const std::vector<Vec2>& grid = path_positions[obstacle];
+    const std::vector<Vec2>& grid = path_samples[obstacle]->positions;
     if (k < grid.size() && std::abs(t - static_cast<double>(k) * step) < 1e-9) return grid[k];
     return obstacles->paths[obstacle].position(t);
   }
@@ -61,9 +61,8 @@ Prepared prepare(const Vec2& start, const Vec2& destination, const PathObstacles
   }
   const auto steps = static_cast<std::size_t>(std::ceil(horizon / step)) + 1;
   for (const PathCircle& c : obstacles.paths) {
-    std::vector<Vec2>& grid = prepared.path_positions.emplace_back();
-    grid.reserve(steps);
-    for (std::size_t k = 0; k < steps; ++k) grid.push_back(c.position(k * step));
+    const bool usable = c.samples && std::abs(c.samples->step - step) < 1e-12 && c.samples->positions.size() >= steps;
+    prepared.path_samples.push_back(usable ? c.samples : sample_path(c, step, horizon));
   }
   std::vector<double>& reach = prepared.robot_reach;
   reach.reserve(obstacles.circles.size() + obstacles.paths.size());
@@ -147,6 +146,8 @@ std::optional<double> sweep(const TrajectoryPath& path, const Prepared& prepared
   }
   for (std::size_t i = 0; i < obstacles.paths.size(); ++i) {
     const geom::Circle reach{Vec2::Zero(), prepared.robot_reach[robot++]};
+    const PathSamples& samples = *prepared.path_samples[i];
+    if (misses_box(samples.low, samples.high, reach.radius + margin)) continue;
     const auto relative = [&](std::size_t k) { return Vec2(points[k] - prepared.path_position(i, k, times[k])); };
     keep(first_hit(
         steps, times, earliest, 0,
@@ -196,6 +197,27 @@ double score_of(double duration, const std::optional<double>& collision, const P
 }
 
 }  // namespace
+
+std::shared_ptr<const PathSamples> sample_path(const PathCircle& circle, double step, double horizon) {
+  auto samples = std::make_shared<PathSamples>();
+  samples->step = step;
+  const auto steps = static_cast<std::size_t>(std::ceil(horizon / step)) + 1;
+  samples->positions.reserve(steps);
+  // At rest at its destination after the path's end: no need to evaluate the trajectories there.
+  const double end = circle.path.duration() - circle.elapsed;
+  const Vec2 destination = circle.path.destination();
+  for (std::size_t k = 0; k < steps; ++k) {
+    const double t = static_cast<double>(k) * step;
+    samples->positions.push_back(t >= end ? destination : circle.position(t));
+  }
+  samples->low = samples->positions.front();
+  samples->high = samples->positions.front();
+  for (const Vec2& p : samples->positions) {
+    samples->low = samples->low.cwiseMin(p);
+    samples->high = samples->high.cwiseMax(p);
+  }
+  return samples;
+}
 
 Vec2 TrajectoryPath::position(double t) const {
   if (!second_ || t < switch_time_) return first_.position(t);
@@ -273,7 +295,7 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
     const Trajectory2D first = Trajectory2D::plan(position, velocity, previous->via(), limits);
     consider(via_path(first, previous->via(), previous->switch_time() - previous_age), true);
   }
-  if (best.first_collision) {
+  if (best.first_collision && *best.first_collision < params.sample_below) {
     for (const double radius : params.radii) {
       for (int i = 0; i < params.directions; ++i) {
         const double angle = params.direction_offset + 2 * std::numbers::pi * i / params.directions;

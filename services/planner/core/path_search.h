@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -65,14 +66,27 @@ struct MovingCircle {
   geom::Vec2 position_at(double t) const { return position + velocity * std::min(t, moving_for); }
 };
 
+/// Where a path obstacle is every `step` s from now, and the box around those points: sampled once by a
+/// caller whose searches share the obstacle (all robots of a tick), instead of once per search.
+struct PathSamples {
+  double step = 0;                   // s
+  std::vector<geom::Vec2> positions;  // [k]: at k * step
+  geom::Vec2 low = geom::Vec2::Zero();
+  geom::Vec2 high = geom::Vec2::Zero();
+};
+
 /// A disc following a planned path (one of our robots: planned earlier this tick, or last tick).
 struct PathCircle {
   TrajectoryPath path;
   double radius = 0;
   double elapsed = 0;  // s of the path already driven now (a path planned last tick: one tick)
+  std::shared_ptr<const PathSamples> samples;  // optional: this path sampled (see sample_path)
 
   geom::Vec2 position(double t) const { return path.position(t + elapsed); }
 };
+
+/// `circle`'s positions every `step` s over `horizon` s (the sweep's grid).
+std::shared_ptr<const PathSamples> sample_path(const PathCircle& circle, double step, double horizon);
 
 struct PathObstacles {
   std::vector<MovingCircle> circles;
@@ -101,6 +115,9 @@ struct PathSearchParams {
   double near_collision = 1.0;          // s
   double early_collision_weight = 5.0;  // s per s
   double keep_previous_margin = 0.1;                // s another path must win by to replace last tick's
+  // s: sub-destinations are sampled only when the best of the direct and the previous path collides sooner
+  // than this (a caller re-planning every tick may leave a far collision to its next tick).
+  double sample_below = std::numeric_limits<double>::infinity();
 };
 
 struct PathResult {

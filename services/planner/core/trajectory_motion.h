@@ -67,6 +67,9 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
     double angular = 0;
     std::optional<PathResult> planned;  // this tick's (reset by begin_tick)
     std::optional<TrajectoryPath> previous;  // last tick's, for the search
+    // The paths above as the other robots' searches sweep them (sampled once per tick).
+    std::shared_ptr<const PathSamples> planned_samples;
+    std::shared_ptr<const PathSamples> previous_samples;  // one tick along
     bool planned_this_tick = false;
     std::optional<double> tracking_error;  // m, this tick
   };
@@ -88,6 +91,7 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
   TrajectoryMotionParams params_;
   std::array<Memory, wm::kMaxRobotsPerTeam> memory_{};
   std::uint64_t ticks_ = 0;
+  double last_dt_ = 0;  // s, the tick period plan() was last called with
 };
 
 }  // namespace ssl::planner
