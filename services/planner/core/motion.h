@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -33,6 +34,7 @@ struct MotionIntent {
   Vec2 target = Vec2::Zero();             // m
   double orientation = 0;                 // rad, heading at the target
   double max_speed = 3.0;                 // m/s
+  double max_angular_speed = std::numeric_limits<double>::infinity();  // rad/s (below the robot's limit)
   double avoid_ball_radius = 0;           // m, robot centre keeps this far from the ball; 0: may touch it
   bool avoid_placement_corridor = false;  // keep out of the ball -> designated position stadium
   bool avoid_their_defense_area = true;   // keep the rule distance (+ margin) from their defense area

@@ -8,6 +8,7 @@
 #include "services/planner/core/motion.h"
 #include "services/planner/core/plays.h"
 #include "services/planner/core/rules.h"
+#include "services/planner/core/skills.h"
 #include "services/planner/core/trajectory_motion.h"
 #include "libs/domain/game_state.h"
 #include "libs/domain/keep_out.h"
@@ -239,6 +240,7 @@ struct Planner::Impl {
   bt::Tree tree;
   Situation situation;
   TeamIntents intents;
+  std::array<std::optional<SkillCall>, wm::kMaxRobotsPerTeam> overrides{};  // override_skill()
   std::vector<wm::RobotState> robots;
   std::vector<wm::RobotState> enemies;
   std::vector<bt::NodeSnapshot> rows;
@@ -317,6 +319,14 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   (void)board.set(kAttacker, kNoRobot);
   tree.tick(now);
   if (Result<TeamIntents> result = board.get(kIntents)) intents = *result;
+  for (const wm::RobotState& robot : robots) {
+    if (robot.id < overrides.size() && overrides[robot.id]) {
+      MotionIntent intent = run_skill(s, robot, *overrides[robot.id]);
+      intent.role = "override";
+      intent.tactic = "override";
+      intents.robots[robot.id] = intent;
+    }
+  }
 
   // Skill layer, then the rule layer.
   const std::optional<std::uint32_t> placer =
@@ -368,6 +378,11 @@ PlannerOutput Planner::step(const PlannerInputs& inputs, time::Timestamp now) {
 
 void Planner::step(const PlannerInputs& inputs, time::Timestamp now, PlannerOutput& out) {
   impl_->step(inputs, now, out);
+}
+
+void Planner::override_skill(std::uint32_t id, const std::optional<SkillOverride>& skill) {
+  if (id >= impl_->overrides.size()) return;
+  impl_->overrides[id] = skill ? std::optional<SkillCall>(skill->call) : std::nullopt;
 }
 
 const MotionIntent* Planner::last_intent(std::uint32_t id) const {

@@ -35,6 +35,7 @@ namespace ssl::planner {
 using wm::Vec2;
 
 struct MotionIntent;   // motion.h
+struct SkillOverride;  // skills.h
 class MotionPlanner;   // motion.h
 
 struct PlannerInputs {
@@ -129,6 +130,10 @@ class Planner {
   PlannerOutput step(const PlannerInputs& inputs, time::Timestamp now);
   /// The same, into `out` (its vectors and strings are reused: no allocation once they are big enough).
   void step(const PlannerInputs& inputs, time::Timestamp now, PlannerOutput& out);
+
+  /// Lab and test use: from the next tick robot `id` (0..15) runs `skill` instead of what the tree decides
+  /// (the rule layer still applies: HALT, STOP speed, no kicks while not allowed); nullopt gives it back.
+  void override_skill(std::uint32_t id, const std::optional<SkillOverride>& skill);
 
   /// The motion intent the last tick gave robot `id`, nullptr if it had none (not visible, or id > 15).
   const MotionIntent* last_intent(std::uint32_t id) const;

@@ -1,5 +1,7 @@
 #include "services/planner/core/plays.h"
 
+#include "services/planner/core/skills.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -292,42 +294,18 @@ void fill(const Situation& s, PlayMemory& memory, std::uint32_t key, Formation f
 
 // ---- single roles -------------------------------------------------------------------------------------
 
-/// A shot at our goal: the ball rolling towards our goal line at least this fast (m/s) and crossing it
-/// within the goal mouth widened by this margin (m) on each side.
-constexpr double kShotMinSpeed = 0.5;
-constexpr double kShotMouthMargin = 0.1;
-
-/// Where the ball, rolling straight on (friction slows it, never turns it), crosses the line x = `line_x`
-/// when it is a shot at our goal; nullopt otherwise.
-std::optional<double> shot_crossing(const Situation& s, double line_x) {
-  const Vec2& v = s.ball_velocity;
-  if (!s.ball_known || v.x() > -kShotMinSpeed || s.ball.x() <= line_x) return std::nullopt;
-  const double goal_line = -s.field.half_length();
-  const double y_at_goal = s.ball.y() + v.y() * (goal_line - s.ball.x()) / v.x();
-  if (std::abs(y_at_goal) > s.field.size().goal_width / 2 + kShotMouthMargin) return std::nullopt;
-  return s.ball.y() + v.y() * (line_x - s.ball.x()) / v.x();
-}
-
-/// The goalkeeper on its goal line: where a shot will cross it, else between the ball and the goal centre.
+/// The goalkeeper: the defend_goal skill under the play's limits (`tmpl`: speed, tactic).
 /// `touch_line`: centre so close to the line that the robot touches it (their penalty).
 MotionIntent keeper_intent(const Situation& s, const MotionIntent& tmpl, bool touch_line) {
+  const wm::RobotState* keeper = s.keeper ? find_robot(s, *s.keeper) : nullptr;
   MotionIntent intent = tmpl;
-  intent.avoid_our_defense_area = false;
+  if (!keeper) return intent;
+  const MotionIntent skill = defend_goal(s, *keeper, {.touch_line = touch_line});
+  intent.avoid_our_defense_area = skill.avoid_our_defense_area;
+  intent.target = skill.target;
+  intent.orientation = skill.orientation;
+  intent.skill = skill.skill;
   intent.role = "goalkeeper";
-  intent.skill = "guard_goal";
-  const double goal_line = -s.field.half_length();
-  const double x = touch_line ? goal_line + radius(s) * 0.6 : goal_line + radius(s) + 0.05;
-  // On the line from the ball to a point behind the goal centre: follows the ball, stays in the goal mouth.
-  const Vec2 anchor(goal_line - 0.5, 0.0);
-  double y = 0;
-  if (s.ball.x() > anchor.x() + 1e-6) y = s.ball.y() * (x - anchor.x()) / (s.ball.x() - anchor.x());
-  if (const std::optional<double> crossing = shot_crossing(s, x)) {
-    y = *crossing;
-    intent.skill = "block_shot";
-  }
-  const double max_y = s.field.size().goal_width / 2 - radius(s);
-  intent.target = {x, std::clamp(y, -max_y, max_y)};
-  intent.orientation = heading_to(intent.target, s.ball);
   return intent;
 }
 
@@ -438,26 +416,6 @@ const wm::RobotState* find_robot(const Situation& s, std::uint32_t id) {
     if (robot.id == id) return &robot;
   }
   return nullptr;
-}
-
-Vec2 shot_target(const Situation& s) {
-  const Vec2 goal = s.field.their_goal_center();
-  const double post = s.field.size().goal_width / 2 - 0.12;
-  const Vec2 candidates[] = {goal, goal + Vec2(0, post), goal - Vec2(0, post)};
-  Vec2 best = goal;
-  double best_room = -1;
-  for (const Vec2& candidate : candidates) {
-    double room = 1e9;
-    const geom::Segment line{s.ball, candidate};
-    for (const wm::RobotState& enemy : s.enemies) {
-      room = std::min(room, (geom::project(enemy.position, line).point - enemy.position).norm());
-    }
-    if (room > best_room + 0.05) {
-      best_room = room;
-      best = candidate;
-    }
-  }
-  return best;
 }
 
 void play_halt(const Situation& s, TeamIntents& out) {
@@ -721,43 +679,6 @@ void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& o
 
 // ---- base strategy --------------------------------------------------------------------------------------
 
-/// Behind the ball on the line along `u` (where a kick sends it), the dribbler at it, facing along `u`
-/// within `max_heading_error` (rad): a kick now goes along `u`.
-bool behind_ball_facing(const Situation& s, const wm::RobotState& robot, const Vec2& u, double max_heading_error) {
-  const Vec2 rel = robot.position - s.ball;
-  const double along = rel.dot(u);
-  const double lateral = std::abs(geom::cross(u, rel));
-  const double dd = dribbler_distance(s);
-  const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
-  return along < -(dd - 0.03) && along > -(dd + 0.06) && lateral < 0.03 && heading.dot(u) > std::cos(max_heading_error);
-}
-
-/// Drive through the ball along `u` with the kicker armed.
-void kick_intent(const Situation& s, const Vec2& u, MotionIntent& intent) {
-  intent.target = s.ball + u * 0.2;
-  intent.orientation = geom::angle_of(u).radians();
-  intent.max_speed = 1.0;
-  intent.kick = KickType::kFlat;
-  intent.kick_speed = s.config->kick_speed;
-  intent.skill = "kick";
-}
-
-/// Get behind the ball on the line along `u`: align when already close behind it, else go around it.
-void approach_intent(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent& intent) {
-  const Vec2 rel = robot.position - s.ball;
-  const double dd = dribbler_distance(s);
-  intent.orientation = geom::angle_of(u).radians();
-  if (rel.dot(u) < -0.06 && std::abs(geom::cross(u, rel)) < 0.08) {
-    intent.target = s.ball - u * (dd + 0.01);
-    intent.max_speed = 1.0;
-    intent.skill = "align";
-  } else {
-    intent.target = s.ball - u * (dd + 0.2);
-    intent.avoid_ball_radius = dd + 0.1;
-    intent.skill = "approach_ball";
-  }
-}
-
 /// In normal play the keeper clears a slow ball lying in our defense area or within kKeeperClearMargin of
 /// it: no field player may fetch it there (robots keep out of our area, and an attacker behind the ball
 /// would stand inside it), so without the keeper such a ball lies until the no-progress restart.
@@ -769,21 +690,15 @@ bool keeper_should_clear(const Situation& s) {
          s.field.in_our_defense_area(s.ball, kKeeperClearMargin) && s.field.in_field(s.ball);
 }
 
-/// The keeper takes the ball from behind (seen from our goal) and kicks it away from our goal: approach,
-/// align on the line goal -> ball, kick.
+/// The keeper clears the ball: the clear_ball skill, allowed in our defense area.
 void write_keeper_clearing(const Situation& s, Ids& reserved, TeamIntents& out) {
   const wm::RobotState* keeper = find_robot(s, *s.keeper);
   if (!keeper) return;
   reserved.add(*s.keeper);
-  MotionIntent intent = base_intent(s, "clear_ball");
+  MotionIntent intent = clear_ball(s, *keeper, {});
+  intent.tactic = "clear_ball";
   intent.avoid_our_defense_area = false;
   intent.role = "goalkeeper";
-  const Vec2 u = unit_or(s.ball - s.field.our_goal_center(), Vec2(1, 0));
-  if (behind_ball_facing(s, *keeper, u, 0.15)) {
-    kick_intent(s, u, intent);
-  } else {
-    approach_intent(s, *keeper, u, intent);
-  }
   write(s, out, *s.keeper, intent);
 }
 
@@ -805,23 +720,19 @@ std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s
 bool attacker_ready_to_kick(const Situation& s, std::uint32_t attacker) {
   const wm::RobotState* robot = find_robot(s, attacker);
   if (!robot || !s.ball_known) return false;
-  return behind_ball_facing(s, *robot, unit_or(shot_target(s) - s.ball, Vec2(1, 0)), 0.1);
+  return behind_ball_facing(s, *robot, unit_or(shot_target(s, attacker) - s.ball, Vec2(1, 0)), 0.1);
 }
 
 void strategy_kick(const Situation& s, std::uint32_t attacker, TeamIntents& out) {
-  MotionIntent intent = base_intent(s, "attack");
-  kick_intent(s, unit_or(shot_target(s) - s.ball, Vec2(1, 0)), intent);
-  intent.avoid_their_defense_area = false;  // the target may lie just inside; the shot happens before
-  intent.role = "attacker";
-  write(s, out, attacker, intent);
+  strategy_approach(s, attacker, out);  // the shoot skill kicks once behind the ball
 }
 
 void strategy_approach(const Situation& s, std::uint32_t attacker, TeamIntents& out) {
   const wm::RobotState* robot = find_robot(s, attacker);
   if (!robot) return;
-  MotionIntent intent = base_intent(s, "attack");
+  MotionIntent intent = shoot(s, *robot, {});
+  intent.tactic = "attack";
   intent.role = "attacker";
-  approach_intent(s, *robot, unit_or(shot_target(s) - s.ball, Vec2(1, 0)), intent);
   write(s, out, attacker, intent);
 }
 

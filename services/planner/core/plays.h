@@ -90,9 +90,6 @@ void strategy_approach(const Situation& s, std::uint32_t attacker, TeamIntents& 
 void strategy_support(const Situation& s, PlayMemory& memory, std::optional<std::uint32_t> attacker,
                       TeamIntents& out);
 
-/// Where the attacker aims in their goal: the post side or centre with the most room from their robots.
-Vec2 shot_target(const Situation& s);
-
 /// Robot state by id, nullptr if not visible.
 const wm::RobotState* find_robot(const Situation& s, std::uint32_t id);
 

@@ -205,7 +205,8 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
 
   const Trajectory1D turn =
       plan_rotation(robot.orientation, memory.angular, intent.orientation,
-                    {.max_speed = limits_.max_angular_speed, .max_acceleration = limits_.max_angular_acceleration});
+                    {.max_speed = std::min(limits_.max_angular_speed, intent.max_angular_speed),
+                     .max_acceleration = limits_.max_angular_acceleration});
   command = to_local(robot.id, velocity, turn.velocity(dt), robot.orientation);
   set_ball_actions(intent, command);
   return command;

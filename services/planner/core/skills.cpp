@@ -1,0 +1,408 @@
+#include "services/planner/core/skills.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "libs/geometry/angle.h"
+#include "libs/geometry/project.h"
+#include "libs/geometry/segment.h"
+#include "libs/geometry/vec2.h"
+
+namespace ssl::planner {
+namespace {
+
+/// A shot at our goal: the ball rolling towards our goal line at least this fast (m/s) and crossing it
+/// within the goal mouth widened by this margin (m) on each side.
+constexpr double kShotMinSpeed = 0.5;
+constexpr double kShotMouthMargin = 0.1;
+/// The rules' dribbling limit (1 m) less a margin: a dribble stops this far from where it started.
+constexpr double kMaxDribble = rules::kMaxDribblingDistance - 0.1;
+/// m/s: a ball this fast rolling our way is a pass to receive, not a ball to fetch.
+constexpr double kIncomingSpeed = 0.5;
+/// m: the receiver gives way (cushions) once the ball is this close.
+constexpr double kCushionDistance = 0.4;
+
+double radius(const Situation& s) { return s.config->robot_radius; }
+double dribbler_distance(const Situation& s) { return radius(s) + s.field.size().ball_radius; }
+double heading_to(const Vec2& from, const Vec2& to) { return geom::angle_of(to - from).radians(); }
+Vec2 unit_or(const Vec2& v, const Vec2& fallback) {
+  const Vec2 u = geom::normalized_or_zero(v);
+  return u.squaredNorm() > 0 ? u : fallback;
+}
+
+MotionIntent base(const Situation& s, Skill skill) {
+  MotionIntent intent;
+  intent.active = true;
+  intent.max_speed = s.config->limits.max_speed;
+  intent.skill = skill_name(skill);
+  return intent;
+}
+
+const wm::RobotState* find_enemy(const Situation& s, std::uint32_t id) {
+  for (const wm::RobotState& enemy : s.enemies) {
+    if (enemy.id == id) return &enemy;
+  }
+  return nullptr;
+}
+
+/// Drive through the ball along `u` with the kicker armed at `speed`.
+void kick_through(const Situation& s, const Vec2& u, double speed, MotionIntent& intent) {
+  intent.target = s.ball + u * 0.2;
+  intent.orientation = geom::angle_of(u).radians();
+  intent.max_speed = std::min(intent.max_speed, 1.0);
+  intent.kick = KickType::kFlat;
+  intent.kick_speed = std::min(speed, rules::kMaxBallSpeed - 0.3);
+}
+
+/// Get behind the ball on the line along `u`: align when already close behind it, else go around it.
+void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent& intent) {
+  const Vec2 rel = robot.position - s.ball;
+  const double dd = dribbler_distance(s);
+  intent.orientation = geom::angle_of(u).radians();
+  if (rel.dot(u) < -0.06 && std::abs(geom::cross(u, rel)) < 0.08) {
+    intent.target = s.ball - u * (dd + 0.01);
+    intent.max_speed = std::min(intent.max_speed, 1.0);
+  } else {
+    intent.target = s.ball - u * (dd + 0.2);
+    intent.avoid_ball_radius = dd + 0.1;
+  }
+}
+
+/// Kick along `u` at `speed` once behind the ball facing that way, else get there.
+MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const Vec2& u, double speed, Skill skill) {
+  MotionIntent intent = base(s, skill);
+  if (behind_ball_facing(s, robot, u, 0.1)) {
+    kick_through(s, u, speed, intent);
+    intent.avoid_their_defense_area = false;  // the drive-through point may lie just inside; the kick is before
+  } else {
+    approach_ball(s, robot, u, intent);
+  }
+  return intent;
+}
+
+/// The angular intervals (from the ball, rad) that robots other than `shooter` hide.
+std::vector<std::pair<double, double>> shadows(const Situation& s, std::optional<std::uint32_t> shooter) {
+  std::vector<std::pair<double, double>> out;
+  const double reach = radius(s) + s.field.size().ball_radius;
+  const auto add = [&](const Vec2& position) {
+    const Vec2 d = position - s.ball;
+    const double distance = d.norm();
+    if (distance <= reach || d.x() <= 0) return;
+    const double centre = std::atan2(d.y(), d.x());
+    const double half = std::asin(std::min(1.0, reach / distance));
+    out.emplace_back(centre - half, centre + half);
+  };
+  for (const wm::RobotState& robot : s.robots) {
+    if (!shooter || robot.id != *shooter) add(robot.position);
+  }
+  for (const wm::RobotState& enemy : s.enemies) add(enemy.position);
+  return out;
+}
+
+}  // namespace
+
+std::string_view skill_name(Skill skill) {
+  switch (skill) {
+    case Skill::kPass: return "pass";
+    case Skill::kReceive: return "receive";
+    case Skill::kGoToBall: return "go_to_ball";
+    case Skill::kGoToPoint: return "go_to_point";
+    case Skill::kTurnWithBall: return "turn_with_ball";
+    case Skill::kClear: return "clear_ball";
+    case Skill::kShoot: return "shoot";
+    case Skill::kStop: return "stop";
+    case Skill::kOpenSpace: return "open_space";
+    case Skill::kManMark: return "man_mark";
+    case Skill::kBlock: return "block";
+    case Skill::kDefendGoal: return "defend_goal";
+  }
+  return "unknown";
+}
+
+Skill skill_of(const SkillCall& call) {
+  return std::visit(
+      [](const auto& p) {
+        using P = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<P, PassParams>) return Skill::kPass;
+        if constexpr (std::is_same_v<P, ReceiveParams>) return Skill::kReceive;
+        if constexpr (std::is_same_v<P, GoToBallParams>) return Skill::kGoToBall;
+        if constexpr (std::is_same_v<P, GoToPointParams>) return Skill::kGoToPoint;
+        if constexpr (std::is_same_v<P, TurnWithBallParams>) return Skill::kTurnWithBall;
+        if constexpr (std::is_same_v<P, ClearParams>) return Skill::kClear;
+        if constexpr (std::is_same_v<P, ShootParams>) return Skill::kShoot;
+        if constexpr (std::is_same_v<P, StopParams>) return Skill::kStop;
+        if constexpr (std::is_same_v<P, OpenSpaceParams>) return Skill::kOpenSpace;
+        if constexpr (std::is_same_v<P, ManMarkParams>) return Skill::kManMark;
+        if constexpr (std::is_same_v<P, BlockParams>) return Skill::kBlock;
+        if constexpr (std::is_same_v<P, DefendGoalParams>) return Skill::kDefendGoal;
+      },
+      call);
+}
+
+bool behind_ball_facing(const Situation& s, const wm::RobotState& robot, const Vec2& u, double max_heading_error) {
+  const Vec2 rel = robot.position - s.ball;
+  const double along = rel.dot(u);
+  const double lateral = std::abs(geom::cross(u, rel));
+  const double dd = dribbler_distance(s);
+  const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
+  return along < -(dd - 0.03) && along > -(dd + 0.06) && lateral < 0.03 &&
+         heading.dot(u) > std::cos(max_heading_error);
+}
+
+std::optional<double> shot_crossing(const Situation& s, double line_x) {
+  const Vec2& v = s.ball_velocity;
+  if (!s.ball_known || v.x() > -kShotMinSpeed || s.ball.x() <= line_x) return std::nullopt;
+  const double goal_line = -s.field.half_length();
+  const double y_at_goal = s.ball.y() + v.y() * (goal_line - s.ball.x()) / v.x();
+  if (std::abs(y_at_goal) > s.field.size().goal_width / 2 + kShotMouthMargin) return std::nullopt;
+  return s.ball.y() + v.y() * (line_x - s.ball.x()) / v.x();
+}
+
+Vec2 shot_target(const Situation& s, std::optional<std::uint32_t> shooter) {
+  const Vec2 goal = s.field.their_goal_center();
+  if (s.ball.x() >= goal.x()) return goal;
+  // The mouth as the ball sees it, less a ball's width at each post.
+  const double half = s.field.size().goal_width / 2 - s.field.size().ball_radius * 2;
+  const double low = std::atan2(goal.y() - half - s.ball.y(), goal.x() - s.ball.x());
+  const double high = std::atan2(goal.y() + half - s.ball.y(), goal.x() - s.ball.x());
+  std::vector<std::pair<double, double>> hidden = shadows(s, shooter);
+  std::sort(hidden.begin(), hidden.end());
+  double best_from = 0;
+  double best_width = -1;
+  double from = low;
+  const auto consider = [&](double to) {
+    if (to - from > best_width) {
+      best_width = to - from;
+      best_from = from;
+    }
+  };
+  for (const auto& [start, end] : hidden) {
+    if (end <= from) continue;
+    if (start >= high) break;
+    consider(std::min(start, high));
+    from = std::max(from, end);
+  }
+  if (from < high) consider(high);
+  if (best_width <= 0) return goal;
+  const double aim = best_from + best_width / 2;
+  return {goal.x(), s.ball.y() + std::tan(aim) * (goal.x() - s.ball.x())};
+}
+
+MotionIntent pass(const Situation& s, const wm::RobotState& robot, const PassParams& p) {
+  const Vec2 to = p.receiver - s.ball;
+  const double distance = to.norm();
+  // v0^2 = v^2 + 2 a d: the speed that slows to arrival_speed over the distance.
+  const double speed = std::sqrt(p.arrival_speed * p.arrival_speed + 2 * p.ball_deceleration * distance);
+  return kick_along(s, robot, unit_or(to, Vec2(1, 0)), speed, Skill::kPass);
+}
+
+MotionIntent receive(const Situation& s, const wm::RobotState& robot, const ReceiveParams& p) {
+  MotionIntent intent = base(s, Skill::kReceive);
+  intent.dribble = true;
+  const double dd = dribbler_distance(s);
+  const double speed = s.ball_velocity.norm();
+  const Vec2 v = unit_or(s.ball_velocity, Vec2(1, 0));
+  const bool incoming = s.ball_known && speed > kIncomingSpeed && (robot.position - s.ball).dot(v) > 0;
+  if (!incoming) {
+    intent.target = p.point;
+    intent.orientation = heading_to(p.point, s.ball);
+    return intent;
+  }
+  // On the ball's line where it passes closest to the robot, the dribbler on the line, facing the ball.
+  const double along = std::max(0.0, (robot.position - s.ball).dot(v));
+  const Vec2 contact = s.ball + v * along;
+  intent.orientation = geom::angle_of(Vec2(-v)).radians();
+  intent.target = contact + v * dd;
+  const double ball_distance = (robot.position - s.ball).norm();
+  if (ball_distance < kCushionDistance + dd) {
+    // Give way with the ball: the dribbler meets it at a lower relative speed and holds it.
+    intent.target = contact + v * (dd + p.cushion * speed * 0.5);
+    intent.max_speed = std::min(intent.max_speed, p.cushion * speed);
+  }
+  return intent;
+}
+
+MotionIntent go_to_ball(const Situation& s, const wm::RobotState& robot, const GoToBallParams& p) {
+  MotionIntent intent = base(s, Skill::kGoToBall);
+  const Vec2 u = unit_or(s.ball - robot.position, Vec2(1, 0));
+  const double dd = dribbler_distance(s);
+  intent.orientation = geom::angle_of(u).radians();
+  intent.dribble = true;
+  intent.target = s.ball - u * (dd - 0.01);
+  if ((robot.position - s.ball).norm() < dd + 0.3) intent.max_speed = std::min(intent.max_speed, p.final_speed);
+  return intent;
+}
+
+MotionIntent go_to_point(const Situation& s, const wm::RobotState& robot, const GoToPointParams& p) {
+  MotionIntent intent = base(s, Skill::kGoToPoint);
+  intent.max_speed = std::min(intent.max_speed, p.max_speed);
+  intent.target = p.point;
+  if (!p.with_ball) {
+    intent.orientation = p.orientation ? *p.orientation : heading_to(p.point, s.ball);
+    return intent;
+  }
+  intent.dribble = true;
+  intent.orientation = p.orientation ? *p.orientation : robot.orientation;
+  intent.max_speed = std::min(intent.max_speed, 1.0);  // faster and the ball rolls off the dribbler
+  if (p.dribble_start) {
+    // The ball (dribbler_distance ahead of the centre) may go at most kMaxDribble from the start.
+    const Vec2 ahead = geom::Angle::from_radians(intent.orientation).to_unit_vector() * dribbler_distance(s);
+    const Vec2 ball_at = p.point + ahead;
+    const Vec2 from_start = ball_at - *p.dribble_start;
+    if (from_start.norm() > kMaxDribble) intent.target = *p.dribble_start + from_start.normalized() * kMaxDribble - ahead;
+  }
+  return intent;
+}
+
+MotionIntent turn_with_ball(const Situation& s, const wm::RobotState& robot, const TurnWithBallParams& p) {
+  MotionIntent intent = base(s, Skill::kTurnWithBall);
+  intent.target = robot.position;
+  intent.orientation = p.orientation;
+  intent.dribble = true;
+  intent.max_speed = std::min(intent.max_speed, 0.3);
+  intent.max_angular_speed = p.max_angular_speed;
+  return intent;
+}
+
+MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const ClearParams& p) {
+  // Directions from straight upfield to 70 degrees either side: the one whose nearest opponent (within
+  // 3 m of the ball) is angularly furthest away.
+  Vec2 best = Vec2(1, 0);
+  double best_room = -1;
+  for (int i = -7; i <= 7; ++i) {
+    const double angle = i * 0.1;
+    const Vec2 u(std::cos(angle), std::sin(angle));
+    double room = M_PI;
+    for (const wm::RobotState& enemy : s.enemies) {
+      const Vec2 d = enemy.position - s.ball;
+      if (d.norm() > 3.0 || d.norm() < 1e-6) continue;
+      room = std::min(room, std::acos(std::clamp(d.normalized().dot(u), -1.0, 1.0)));
+    }
+    if (room > best_room + 1e-6) {
+      best_room = room;
+      best = u;
+    }
+  }
+  return kick_along(s, robot, best, p.speed, Skill::kClear);
+}
+
+MotionIntent shoot(const Situation& s, const wm::RobotState& robot, const ShootParams& p) {
+  const Vec2 u = unit_or(shot_target(s, robot.id) - s.ball, Vec2(1, 0));
+  return kick_along(s, robot, u, p.speed.value_or(s.config->kick_speed), Skill::kShoot);
+}
+
+MotionIntent stop(const Situation& s, const wm::RobotState& /*robot*/, const StopParams& /*p*/) {
+  MotionIntent intent = base(s, Skill::kStop);
+  intent.halt = true;
+  return intent;
+}
+
+MotionIntent open_space(const Situation& s, const wm::RobotState& /*robot*/, const OpenSpaceParams& p) {
+  MotionIntent intent = base(s, Skill::kOpenSpace);
+  // A 7 x 7 grid over the square around the anchor, inside its circle and the field, off the defense areas.
+  Vec2 best = p.anchor;
+  double best_score = -1e9;
+  for (int i = -3; i <= 3; ++i) {
+    for (int j = -3; j <= 3; ++j) {
+      const Vec2 candidate = p.anchor + Vec2(i, j) * (p.radius / 3);
+      if ((candidate - p.anchor).norm() > p.radius + 1e-9) continue;
+      if (!s.field.in_field(candidate) || s.field.in_our_defense_area(candidate, radius(s) + 0.1) ||
+          s.field.in_their_defense_area(candidate, radius(s) + 0.3)) {
+        continue;
+      }
+      double room = 1.5;  // m: more than this from every opponent counts the same
+      double lane = 1.0;  // m: the pass lane from the ball is open this wide
+      const geom::Segment line{s.ball, candidate};
+      for (const wm::RobotState& enemy : s.enemies) {
+        room = std::min(room, (enemy.position - candidate).norm());
+        lane = std::min(lane, (geom::project(enemy.position, line).point - enemy.position).norm());
+      }
+      const double score = room + 0.5 * lane - 0.3 * (candidate - p.anchor).norm();
+      if (score > best_score) {
+        best_score = score;
+        best = candidate;
+      }
+    }
+  }
+  intent.target = best;
+  intent.orientation = heading_to(best, s.ball);
+  return intent;
+}
+
+MotionIntent man_mark(const Situation& s, const wm::RobotState& robot, const ManMarkParams& p) {
+  MotionIntent intent = base(s, Skill::kManMark);
+  const wm::RobotState* opponent = find_enemy(s, p.opponent);
+  if (!opponent) {
+    intent.target = robot.position;
+    intent.orientation = heading_to(robot.position, s.ball);
+    return intent;
+  }
+  // On its line to our goal centre; where it will be a moment from now (we are slower to react).
+  const Vec2 predicted = opponent->position + opponent->velocity * 0.1;
+  const Vec2 to_goal = unit_or(s.field.our_goal_center() - predicted, Vec2(-1, 0));
+  intent.target = predicted + to_goal * p.distance;
+  intent.orientation = heading_to(intent.target, s.ball);
+  return intent;
+}
+
+MotionIntent block(const Situation& s, const wm::RobotState& robot, const BlockParams& p) {
+  MotionIntent intent = base(s, Skill::kBlock);
+  const wm::RobotState* opponent = find_enemy(s, p.opponent);
+  if (!opponent) {
+    intent.target = robot.position;
+    intent.orientation = heading_to(robot.position, s.ball);
+    return intent;
+  }
+  const Vec2 heading = geom::Angle::from_radians(opponent->orientation).to_unit_vector();
+  const Vec2 to_goal = unit_or(s.field.our_goal_center() - opponent->position, Vec2(-1, 0));
+  const bool faces_goal = heading.dot(to_goal) > std::cos(p.facing_limit);
+  // Phase 1: in its mouth (where a kick would go). Phase 2: on its line of sight to our goal.
+  const Vec2 direction = faces_goal ? heading : to_goal;
+  intent.target = opponent->position + direction * p.distance;
+  intent.orientation = heading_to(intent.target, opponent->position);
+  intent.avoid_ball_radius = 0;
+  return intent;
+}
+
+MotionIntent defend_goal(const Situation& s, const wm::RobotState& /*robot*/, const DefendGoalParams& p) {
+  MotionIntent intent = base(s, Skill::kDefendGoal);
+  intent.avoid_our_defense_area = false;
+  const double goal_line = -s.field.half_length();
+  const double x = p.touch_line ? goal_line + radius(s) * 0.6 : goal_line + radius(s) + 0.05;
+  // On the bisector of the angle the two posts make at the ball: the keeper covers both sides equally.
+  const double half = s.field.size().goal_width / 2;
+  const Vec2 left = unit_or(Vec2(goal_line, half) - s.ball, Vec2(-1, 0));
+  const Vec2 right = unit_or(Vec2(goal_line, -half) - s.ball, Vec2(-1, 0));
+  const Vec2 bisector = unit_or(left + right, Vec2(-1, 0));
+  double y = 0;
+  if (s.ball.x() > x + 1e-6 && bisector.x() < -1e-6) y = s.ball.y() + bisector.y() * (x - s.ball.x()) / bisector.x();
+  if (const std::optional<double> crossing = shot_crossing(s, x)) y = *crossing;  // intercept on its line
+  const double max_y = half - radius(s);
+  intent.target = {x, std::clamp(y, -max_y, max_y)};
+  intent.orientation = heading_to(intent.target, s.ball);
+  return intent;
+}
+
+MotionIntent run_skill(const Situation& s, const wm::RobotState& robot, const SkillCall& call) {
+  return std::visit(
+      [&](const auto& p) -> MotionIntent {
+        using P = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<P, PassParams>) return pass(s, robot, p);
+        if constexpr (std::is_same_v<P, ReceiveParams>) return receive(s, robot, p);
+        if constexpr (std::is_same_v<P, GoToBallParams>) return go_to_ball(s, robot, p);
+        if constexpr (std::is_same_v<P, GoToPointParams>) return go_to_point(s, robot, p);
+        if constexpr (std::is_same_v<P, TurnWithBallParams>) return turn_with_ball(s, robot, p);
+        if constexpr (std::is_same_v<P, ClearParams>) return clear_ball(s, robot, p);
+        if constexpr (std::is_same_v<P, ShootParams>) return shoot(s, robot, p);
+        if constexpr (std::is_same_v<P, StopParams>) return stop(s, robot, p);
+        if constexpr (std::is_same_v<P, OpenSpaceParams>) return open_space(s, robot, p);
+        if constexpr (std::is_same_v<P, ManMarkParams>) return man_mark(s, robot, p);
+        if constexpr (std::is_same_v<P, BlockParams>) return block(s, robot, p);
+        if constexpr (std::is_same_v<P, DefendGoalParams>) return defend_goal(s, robot, p);
+      },
+      call);
+}
+
+}  // namespace ssl::planner

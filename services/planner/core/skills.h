@@ -1,0 +1,139 @@
+// The action nodes of seeds/001: what ONE robot does, as a function of the tick's Situation (the global game
+// state) and a typed params struct, returning its MotionIntent. Stateless: anything a skill must remember
+// between ticks comes in its params (where a dribble started) or is read from the world (where the ball
+// rolls, which way the possessor faces). Plays and the strategy pick the skill and its params; the skill
+// layer (motion.h) drives the intent.
+//
+//   const MotionIntent intent = run_skill(situation, robot, ShootParams{});
+//   const MotionIntent intent = pass(situation, robot, {.receiver = {1.0, 2.0}});
+//
+// All positions are in the TEAM frame (our goal at negative x).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string_view>
+#include <variant>
+
+#include "libs/domain/rules.h"
+#include "services/planner/core/motion.h"
+#include "services/planner/core/plays.h"
+
+namespace ssl::planner {
+
+enum class Skill {
+  kPass,
+  kReceive,
+  kGoToBall,
+  kGoToPoint,
+  kTurnWithBall,
+  kClear,
+  kShoot,
+  kStop,
+  kOpenSpace,
+  kManMark,
+  kBlock,
+  kDefendGoal,
+};
+std::string_view skill_name(Skill skill);
+
+/// Kick the ball to `receiver` so that it arrives there at `arrival_speed` (what a receiver controls).
+struct PassParams {
+  Vec2 receiver = Vec2::Zero();       // m
+  double arrival_speed = 1.5;         // m/s at the receiver
+  double ball_deceleration = 0.4;     // m/s^2 of the rolling ball (carpet)
+};
+/// Wait at `point`; once the ball rolls towards us, stand on its line, dribbler on, and give way as it
+/// arrives (the cushion).
+struct ReceiveParams {
+  Vec2 point = Vec2::Zero();          // m, where the pass is expected
+  double cushion = 0.3;               // fraction of the ball's speed we move back with it, near the ball
+};
+/// Take the ball from the side we come from, dribbler on.
+struct GoToBallParams {
+  double final_speed = 1.0;           // m/s cap for the last part
+};
+/// Without the ball: to `point`, facing the ball. With it: dribble there, never further than the rules'
+/// dribbling distance from where the dribble started.
+struct GoToPointParams {
+  Vec2 point = Vec2::Zero();
+  std::optional<double> orientation;  // rad; default: face the ball (without it) / keep the heading (with it)
+  bool with_ball = false;
+  std::optional<Vec2> dribble_start;  // where we took the ball (with_ball)
+  double max_speed = std::numeric_limits<double>::infinity();  // m/s
+};
+/// Turn on the spot to `orientation`, the ball held by the dribbler, slowly enough to keep it.
+struct TurnWithBallParams {
+  double orientation = 0;             // rad
+  double max_angular_speed = 3.0;     // rad/s
+};
+/// Kick the ball away from our goal, where the fewest opponents are.
+struct ClearParams {
+  double speed = rules::kMaxBallSpeed - 1.0;  // m/s
+};
+/// Shoot at the widest part of their goal left open by the robots, as seen from the ball.
+struct ShootParams {
+  std::optional<double> speed;        // m/s; default: the config's kick speed
+};
+/// Brake to a standstill.
+struct StopParams {};
+/// Move to the spot near `anchor` with most room from opponents and a free line from the ball.
+struct OpenSpaceParams {
+  Vec2 anchor = Vec2::Zero();
+  double radius = 1.0;                // m around the anchor that is searched
+};
+/// Stay goal-side of opponent robot `opponent`, `distance` from it on its line to our goal.
+struct ManMarkParams {
+  std::uint32_t opponent = 0;
+  double distance = 0.35;             // m, centre to centre
+};
+/// The possessor `opponent`: while it faces our goal (within `facing_limit`), stand in its mouth (in front
+/// of its kicker); once it turns further away, block its line of sight to our goal instead.
+struct BlockParams {
+  std::uint32_t opponent = 0;
+  double facing_limit = 1.0;          // rad between its heading and the direction to our goal
+  double distance = 0.3;              // m, centre to centre
+};
+/// The keeper: on the bisector of the goal as seen from the ball, intercepting a shot on its predicted
+/// line; `touch_line`: on the goal line (their penalty before it is taken).
+struct DefendGoalParams {
+  bool touch_line = false;
+};
+
+using SkillCall = std::variant<PassParams, ReceiveParams, GoToBallParams, GoToPointParams, TurnWithBallParams,
+                               ClearParams, ShootParams, StopParams, OpenSpaceParams, ManMarkParams, BlockParams,
+                               DefendGoalParams>;
+Skill skill_of(const SkillCall& call);
+/// A skill one robot runs instead of the tree's choice (Planner::override_skill).
+struct SkillOverride {
+  SkillCall call;
+};
+
+MotionIntent pass(const Situation& s, const wm::RobotState& robot, const PassParams& p);
+MotionIntent receive(const Situation& s, const wm::RobotState& robot, const ReceiveParams& p);
+MotionIntent go_to_ball(const Situation& s, const wm::RobotState& robot, const GoToBallParams& p);
+MotionIntent go_to_point(const Situation& s, const wm::RobotState& robot, const GoToPointParams& p);
+MotionIntent turn_with_ball(const Situation& s, const wm::RobotState& robot, const TurnWithBallParams& p);
+MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const ClearParams& p);
+MotionIntent shoot(const Situation& s, const wm::RobotState& robot, const ShootParams& p);
+MotionIntent stop(const Situation& s, const wm::RobotState& robot, const StopParams& p);
+MotionIntent open_space(const Situation& s, const wm::RobotState& robot, const OpenSpaceParams& p);
+MotionIntent man_mark(const Situation& s, const wm::RobotState& robot, const ManMarkParams& p);
+MotionIntent block(const Situation& s, const wm::RobotState& robot, const BlockParams& p);
+MotionIntent defend_goal(const Situation& s, const wm::RobotState& robot, const DefendGoalParams& p);
+/// The skill `call` names, with its params.
+MotionIntent run_skill(const Situation& s, const wm::RobotState& robot, const SkillCall& call);
+
+// ---- shared by the skills and the plays ----
+
+/// Where a shot goes in: the middle of the widest part of their goal mouth that no robot (but `shooter`)
+/// hides from the ball; the goal centre when all of it is hidden.
+Vec2 shot_target(const Situation& s, std::optional<std::uint32_t> shooter = std::nullopt);
+/// Behind the ball on the line along `u` (where a kick sends it), the dribbler at it, facing along `u`
+/// within `max_heading_error` (rad): a kick now goes along `u`.
+bool behind_ball_facing(const Situation& s, const wm::RobotState& robot, const Vec2& u, double max_heading_error);
+/// Where the ball, rolling on, crosses the line x = `line_x` when it is a shot at our goal; nullopt otherwise.
+std::optional<double> shot_crossing(const Situation& s, double line_x);
+
+}  // namespace ssl::planner

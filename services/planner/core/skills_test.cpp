@@ -1,0 +1,207 @@
+// The action nodes one by one, as pure functions: the intent each skill writes for a given situation. Their
+// behaviour in the simulator (shots go in, passes are received, marks hold) is checked in
+// tests/simulated/skills_sim_test.cpp.
+#include "services/planner/core/skills.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "libs/geometry/angle.h"
+#include "services/planner/core/planner_test_util.h"
+
+namespace ssl::planner {
+namespace {
+
+using testing::robot_at;
+
+constexpr double kDribbler = 0.09 + 0.0215;  // robot radius + ball radius (division B)
+
+struct Scene {
+  PlannerConfig config;
+  std::vector<wm::RobotState> robots;
+  std::vector<wm::RobotState> enemies;
+  Situation s;
+
+  explicit Scene(const Vec2& ball, const Vec2& ball_velocity = Vec2::Zero()) {
+    s.config = &config;
+    s.field = wm::Field(FieldGeometry::division_b());
+    s.ball_known = true;
+    s.ball = ball;
+    s.ball_velocity = ball_velocity;
+  }
+  const Situation& situation() {
+    s.robots = robots;
+    s.enemies = enemies;
+    return s;
+  }
+};
+
+wm::RobotState enemy_at(const Vec2& position, std::uint32_t id, double heading = M_PI) {
+  wm::RobotState robot = robot_at(position, heading, id);
+  return robot;
+}
+
+TEST(Skills, EverySkillNamesItselfAndRunSkillDispatchesByParams) {
+  Scene scene({0, 0});
+  const wm::RobotState robot = robot_at({-1, 0});
+  scene.robots = {robot};
+  scene.enemies = {enemy_at({1, 1}, 3)};
+  const std::vector<SkillCall> calls = {PassParams{},      ReceiveParams{},  GoToBallParams{},   GoToPointParams{},
+                                        TurnWithBallParams{}, ClearParams{},  ShootParams{},      StopParams{},
+                                        OpenSpaceParams{},  ManMarkParams{.opponent = 3}, BlockParams{.opponent = 3},
+                                        DefendGoalParams{}};
+  for (const SkillCall& call : calls) {
+    const MotionIntent intent = run_skill(scene.situation(), robot, call);
+    EXPECT_TRUE(intent.active);
+    EXPECT_EQ(intent.skill, skill_name(skill_of(call)));
+  }
+}
+
+TEST(Skills, PassKicksAtTheSpeedThatArrivesAtTheReceiversSpeed) {
+  Scene scene({0, 0});
+  const PassParams params{.receiver = {3, 0}, .arrival_speed = 1.5, .ball_deceleration = 0.4};
+  // Not behind the ball yet: approach, no kick.
+  const wm::RobotState aside = robot_at({0, 1});
+  EXPECT_EQ(pass(scene.situation(), aside, params).kick, KickType::kNone);
+  // Behind it, facing the receiver: kick with v0^2 = 1.5^2 + 2 * 0.4 * 3.
+  const wm::RobotState behind = robot_at({-kDribbler, 0}, 0);
+  const MotionIntent kick = pass(scene.situation(), behind, params);
+  EXPECT_EQ(kick.kick, KickType::kFlat);
+  EXPECT_NEAR(kick.kick_speed, std::sqrt(1.5 * 1.5 + 2 * 0.4 * 3), 1e-9);
+}
+
+TEST(Skills, ReceiveStandsOnTheBallsLineFacingIt) {
+  // The ball rolls along +x at 3 m/s; the receiver is 2 m ahead, 0.3 m off its line.
+  Scene scene({0, 0}, {3, 0});
+  const wm::RobotState robot = robot_at({2, 0.3}, M_PI);
+  const MotionIntent intent = receive(scene.situation(), robot, {.point = {2, 0.3}});
+  EXPECT_NEAR(intent.target.y(), 0.0, 1e-9) << "on the line";
+  EXPECT_NEAR(intent.target.x(), 2 + kDribbler, 1e-9) << "the dribbler where the ball passes";
+  EXPECT_NEAR(std::abs(intent.orientation), M_PI, 1e-9) << "facing the ball";
+  EXPECT_TRUE(intent.dribble);
+  // A ball that is not coming: wait at the point, facing the ball.
+  Scene still({0, 0});
+  const MotionIntent wait = receive(still.situation(), robot, {.point = {2, 0.3}});
+  EXPECT_EQ(wait.target, Vec2(2, 0.3));
+}
+
+TEST(Skills, GoToPointWithTheBallStopsShortOfTheDribblingLimit) {
+  Scene scene({0, 0});
+  const wm::RobotState robot = robot_at({-kDribbler, 0}, 0);
+  const MotionIntent intent =
+      go_to_point(scene.situation(), robot, {.point = {3, 0}, .orientation = 0.0, .with_ball = true,
+                                              .dribble_start = Vec2(0, 0)});
+  EXPECT_TRUE(intent.dribble);
+  EXPECT_LE(intent.target.x() + kDribbler, rules::kMaxDribblingDistance) << "the ball stays within 1 m";
+  EXPECT_LE(intent.max_speed, 1.0);
+  // Without the ball it faces the ball.
+  const MotionIntent free = go_to_point(scene.situation(), robot_at({-2, 0}), {.point = {-1, 1}});
+  EXPECT_NEAR(free.orientation, geom::angle_of(Vec2(Vec2(0, 0) - Vec2(-1, 1))).radians(), 1e-9);
+}
+
+TEST(Skills, TurnWithBallHoldsThePlaceAndLimitsTheTurnRate) {
+  Scene scene({0, 0});
+  const wm::RobotState robot = robot_at({-kDribbler, 0}, 0);
+  const MotionIntent intent = turn_with_ball(scene.situation(), robot, {.orientation = 2.0, .max_angular_speed = 2.5});
+  EXPECT_EQ(intent.target, robot.position);
+  EXPECT_DOUBLE_EQ(intent.orientation, 2.0);
+  EXPECT_DOUBLE_EQ(intent.max_angular_speed, 2.5);
+  EXPECT_TRUE(intent.dribble);
+}
+
+TEST(Skills, ShootAimsAtTheWidestOpenPartOfTheGoal) {
+  // Division B goal: 1 m wide at x = 4.5. From a ball at (2.5, 0) an opponent at (3.5, 0.25) hides the goal
+  // from y = +0.28 to the +y post: the open part is y in [-0.46, +0.28], its middle (by angle) y = -0.088.
+  Scene scene({2.5, 0});
+  scene.enemies = {enemy_at({3.5, 0.25}, 1)};
+  const Vec2 target = shot_target(scene.situation());
+  EXPECT_NEAR(target.x(), 4.5, 1e-9);
+  EXPECT_NEAR(target.y(), -0.088, 0.001);
+  // An empty goal: the middle.
+  Scene empty({2.5, 0});
+  EXPECT_NEAR(shot_target(empty.situation()).y(), 0.0, 1e-9);
+}
+
+TEST(Skills, ClearKicksAwayFromOurGoalWhereNoOpponentIs) {
+  Scene scene({-3, 0});
+  scene.enemies = {enemy_at({-2, 0}, 1), enemy_at({-2, 0.3}, 2)};
+  const wm::RobotState robot = robot_at({-3.5, 0}, 0);
+  const MotionIntent intent = clear_ball(scene.situation(), robot, {});
+  const Vec2 direction = geom::Angle::from_radians(intent.orientation).to_unit_vector();
+  EXPECT_GT(direction.x(), 0.3) << "upfield";
+  EXPECT_LT(direction.y(), -0.3) << "away from the two opponents ahead and to the left";
+}
+
+TEST(Skills, StopHalts) {
+  Scene scene({0, 0});
+  EXPECT_TRUE(stop(scene.situation(), robot_at({1, 1}), {}).halt);
+}
+
+TEST(Skills, OpenSpaceMovesAwayFromACrowdedAnchor) {
+  Scene scene({0, 0});
+  scene.enemies = {enemy_at({2, 1}, 1), enemy_at({2.2, 0.8}, 2)};
+  const MotionIntent intent = open_space(scene.situation(), robot_at({0, 2}), {.anchor = {2, 1}, .radius = 1.0});
+  double nearest = 1e9;
+  for (const wm::RobotState& enemy : scene.enemies) nearest = std::min(nearest, (enemy.position - intent.target).norm());
+  EXPECT_GT(nearest, 0.6);
+  EXPECT_LE((intent.target - Vec2(2, 1)).norm(), 1.0 + 1e-9);
+}
+
+TEST(Skills, ManMarkStandsGoalSideOfItsOpponent) {
+  Scene scene({0, 0});
+  scene.enemies = {enemy_at({-1, 1}, 4)};
+  const MotionIntent intent = man_mark(scene.situation(), robot_at({0, 2}), {.opponent = 4, .distance = 0.35});
+  EXPECT_NEAR((intent.target - Vec2(-1, 1)).norm(), 0.35, 1e-9);
+  const Vec2 goal = scene.situation().field.our_goal_center();
+  EXPECT_LT((intent.target - goal).norm(), (Vec2(-1, 1) - goal).norm()) << "between it and our goal";
+}
+
+TEST(Skills, BlockStandsInTheMouthThenOnTheLineOfSight) {
+  Scene scene({-1.9, 0});
+  // Facing our goal (heading pi): in front of its kicker.
+  scene.enemies = {enemy_at({-1.8, 0}, 2, M_PI)};
+  const MotionIntent mouth = block(scene.situation(), robot_at({-3, 1}), {.opponent = 2, .distance = 0.3});
+  EXPECT_NEAR(mouth.target.x(), -2.1, 1e-9);
+  EXPECT_NEAR(mouth.target.y(), 0.0, 1e-9);
+  // Turned away (heading +y): between it and our goal instead.
+  scene.enemies = {enemy_at({-1.8, 0}, 2, M_PI / 2)};
+  const MotionIntent sight = block(scene.situation(), robot_at({-3, 1}), {.opponent = 2, .distance = 0.3});
+  EXPECT_NEAR(sight.target.y(), 0.0, 1e-9);
+  EXPECT_LT(sight.target.x(), -1.8);
+}
+
+TEST(Skills, DefendGoalStandsOnTheBisectorOfThePosts) {
+  // Ball straight in front of the goal: the keeper at the centre; off to the side: towards the ball's side,
+  // on the bisector of the posts' directions.
+  Scene centre({-2, 0});
+  EXPECT_NEAR(defend_goal(centre.situation(), robot_at({-4.4, 0}), {}).target.y(), 0.0, 1e-9);
+  Scene side({-3.5, 1.5});
+  const MotionIntent intent = defend_goal(side.situation(), robot_at({-4.4, 0}), {});
+  const Vec2 ball(-3.5, 1.5);
+  const Vec2 left = (Vec2(-4.5, 0.5) - ball).normalized();
+  const Vec2 right = (Vec2(-4.5, -0.5) - ball).normalized();
+  const Vec2 to_keeper = (intent.target - ball).normalized();
+  EXPECT_NEAR(std::acos(to_keeper.dot(left)), std::acos(to_keeper.dot(right)), 1e-6) << "equal angles to both posts";
+  EXPECT_FALSE(intent.avoid_our_defense_area);
+}
+
+TEST(Skills, AnOverriddenRobotRunsItsSkillInsteadOfTheTree) {
+  const testing::Side side{};
+  testing::Script script(side);
+  script.default_teams();
+  script.command(wm::RefereeCommand::kForceStart);
+  Planner planner(testing::config_for(side));
+  planner.override_skill(5, SkillOverride{StopParams{}});
+  (void)planner.step(script.inputs(), testing::at_tick(0));
+  ASSERT_NE(planner.last_intent(5), nullptr);
+  EXPECT_EQ(planner.last_intent(5)->skill, skill_name(Skill::kStop));
+  EXPECT_TRUE(planner.last_intent(5)->halt);
+  planner.override_skill(5, std::nullopt);
+  (void)planner.step(script.inputs(), testing::at_tick(1));
+  EXPECT_NE(planner.last_intent(5)->skill, skill_name(Skill::kStop)) << "back to the tree";
+}
+
+}  // namespace
+}  // namespace ssl::planner
