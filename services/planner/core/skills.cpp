@@ -23,6 +23,10 @@ constexpr double kMaxDribble = rules::kMaxDribblingDistance - 0.1;
 constexpr double kIncomingSpeed = 0.5;
 /// m: the receiver gives way (cushions) once the ball is this close.
 constexpr double kCushionDistance = 0.4;
+/// s the marker aims ahead of where its opponent is.
+constexpr double kMarkLookahead = 0.3;
+/// m: a slow ball this close to the receiving point is fetched by the receiver.
+constexpr double kTakeNearPoint = 1.0;
 
 double radius(const Situation& s) { return s.config->robot_radius; }
 double dribbler_distance(const Situation& s) { return radius(s) + s.field.size().ball_radius; }
@@ -193,32 +197,39 @@ Vec2 shot_target(const Situation& s, std::optional<std::uint32_t> shooter) {
 MotionIntent pass(const Situation& s, const wm::RobotState& robot, const PassParams& p) {
   const Vec2 to = p.receiver - s.ball;
   const double distance = to.norm();
-  // v0^2 = v^2 + 2 a d: the speed that slows to arrival_speed over the distance.
-  const double speed = std::sqrt(p.arrival_speed * p.arrival_speed + 2 * p.ball_deceleration * distance);
+  // Rolling at v0 (after the slide) it slows to v over d when v0^2 = v^2 + 2 a d.
+  const double rolling = std::sqrt(p.arrival_speed * p.arrival_speed + 2 * p.ball_deceleration * distance);
+  const double speed = rolling / p.rolling_fraction;
   return kick_along(s, robot, unit_or(to, Vec2(1, 0)), speed, Skill::kPass);
 }
 
 MotionIntent receive(const Situation& s, const wm::RobotState& robot, const ReceiveParams& p) {
-  MotionIntent intent = base(s, Skill::kReceive);
-  intent.dribble = true;
   const double dd = dribbler_distance(s);
   const double speed = s.ball_velocity.norm();
   const Vec2 v = unit_or(s.ball_velocity, Vec2(1, 0));
-  const bool incoming = s.ball_known && speed > kIncomingSpeed && (robot.position - s.ball).dot(v) > 0;
+  const bool incoming = s.ball_known && speed > kIncomingSpeed && (p.point - s.ball).dot(v) > 0;
   if (!incoming) {
+    // A slow ball near the point is ours to take, gently; otherwise wait at the point, facing the ball.
+    if (s.ball_known && (s.ball - p.point).norm() < kTakeNearPoint) {
+      MotionIntent intent = go_to_ball(s, robot, {.final_speed = 0.5});
+      intent.skill = skill_name(Skill::kReceive);
+      return intent;
+    }
+    MotionIntent intent = base(s, Skill::kReceive);
+    intent.dribble = true;
     intent.target = p.point;
     intent.orientation = heading_to(p.point, s.ball);
     return intent;
   }
-  // On the ball's line where it passes closest to the robot, the dribbler on the line, facing the ball.
-  const double along = std::max(0.0, (robot.position - s.ball).dot(v));
-  const Vec2 contact = s.ball + v * along;
+  // Where the ball's line passes the expected point: the dribbler on the line there, facing the ball.
+  MotionIntent intent = base(s, Skill::kReceive);
+  intent.dribble = true;
+  const Vec2 contact = s.ball + v * std::max(0.0, (p.point - s.ball).dot(v));
   intent.orientation = geom::angle_of(Vec2(-v)).radians();
   intent.target = contact + v * dd;
-  const double ball_distance = (robot.position - s.ball).norm();
-  if (ball_distance < kCushionDistance + dd) {
+  if ((robot.position - s.ball).norm() < kCushionDistance + dd) {
     // Give way with the ball: the dribbler meets it at a lower relative speed and holds it.
-    intent.target = contact + v * (dd + p.cushion * speed * 0.5);
+    intent.target = robot.position + v * (p.cushion * speed * 0.5);
     intent.max_speed = std::min(intent.max_speed, p.cushion * speed);
   }
   return intent;
@@ -267,13 +278,16 @@ MotionIntent turn_with_ball(const Situation& s, const wm::RobotState& robot, con
 }
 
 MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const ClearParams& p) {
-  // Directions from straight upfield to 70 degrees either side: the one whose nearest opponent (within
-  // 3 m of the ball) is angularly furthest away.
-  Vec2 best = Vec2(1, 0);
+  // Directions from straight upfield to 80 degrees either side whose kicking spot behind the ball lies on
+  // the field (a ball on the goal line is cleared along it): the one whose nearest opponent (within 3 m of
+  // the ball) is angularly furthest away. None: straight away from our goal centre.
+  Vec2 best = unit_or(s.ball - s.field.our_goal_center(), Vec2(1, 0));
   double best_room = -1;
-  for (int i = -7; i <= 7; ++i) {
+  const double behind = dribbler_distance(s) + 0.2;  // where approach_ball takes the robot
+  for (int i = -8; i <= 8; ++i) {
     const double angle = i * 0.1;
     const Vec2 u(std::cos(angle), std::sin(angle));
+    if (!s.field.in_field(s.ball - u * behind, s.zones.field_margin)) continue;
     double room = M_PI;
     for (const wm::RobotState& enemy : s.enemies) {
       const Vec2 d = enemy.position - s.ball;
@@ -339,8 +353,9 @@ MotionIntent man_mark(const Situation& s, const wm::RobotState& robot, const Man
     intent.orientation = heading_to(robot.position, s.ball);
     return intent;
   }
-  // On its line to our goal centre; where it will be a moment from now (we are slower to react).
-  const Vec2 predicted = opponent->position + opponent->velocity * 0.1;
+  // On its line to our goal centre, where it will be kMarkLookahead from now: a trajectory comes to rest at
+  // its target, so a target that moves on is only kept up with from ahead of it.
+  const Vec2 predicted = opponent->position + opponent->velocity * kMarkLookahead;
   const Vec2 to_goal = unit_or(s.field.our_goal_center() - predicted, Vec2(-1, 0));
   intent.target = predicted + to_goal * p.distance;
   intent.orientation = heading_to(intent.target, s.ball);

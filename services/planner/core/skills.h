@@ -42,7 +42,9 @@ std::string_view skill_name(Skill skill);
 struct PassParams {
   Vec2 receiver = Vec2::Zero();       // m
   double arrival_speed = 1.5;         // m/s at the receiver
-  double ball_deceleration = 0.4;     // m/s^2 of the rolling ball (carpet)
+  double ball_deceleration = 0.35;    // m/s^2 of the rolling ball (carpet)
+  // A kicked ball first slides and keeps this fraction of its speed once it rolls (5/7: a solid sphere).
+  double rolling_fraction = 5.0 / 7.0;
 };
 /// Wait at `point`; once the ball rolls towards us, stand on its line, dribbler on, and give way as it
 /// arrives (the cushion).
@@ -86,7 +88,7 @@ struct OpenSpaceParams {
 /// Stay goal-side of opponent robot `opponent`, `distance` from it on its line to our goal.
 struct ManMarkParams {
   std::uint32_t opponent = 0;
-  double distance = 0.35;             // m, centre to centre
+  double distance = 0.3;              // m, centre to centre
 };
 /// The possessor `opponent`: while it faces our goal (within `facing_limit`), stand in its mouth (in front
 /// of its kicker); once it turns further away, block its line of sight to our goal instead.

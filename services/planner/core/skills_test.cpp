@@ -1,6 +1,6 @@
 // The action nodes one by one, as pure functions: the intent each skill writes for a given situation. Their
 // behaviour in the simulator (shots go in, passes are received, marks hold) is checked in
-// tests/simulated/skills_sim_test.cpp.
+// tests/simulated/planner_referee_sim_test.cpp (the action nodes section).
 #include "services/planner/core/skills.h"
 
 #include <gtest/gtest.h>
@@ -61,15 +61,15 @@ TEST(Skills, EverySkillNamesItselfAndRunSkillDispatchesByParams) {
 
 TEST(Skills, PassKicksAtTheSpeedThatArrivesAtTheReceiversSpeed) {
   Scene scene({0, 0});
-  const PassParams params{.receiver = {3, 0}, .arrival_speed = 1.5, .ball_deceleration = 0.4};
+  const PassParams params{.receiver = {3, 0}, .arrival_speed = 1.5, .ball_deceleration = 0.4, .rolling_fraction = 0.7};
   // Not behind the ball yet: approach, no kick.
   const wm::RobotState aside = robot_at({0, 1});
   EXPECT_EQ(pass(scene.situation(), aside, params).kick, KickType::kNone);
-  // Behind it, facing the receiver: kick with v0^2 = 1.5^2 + 2 * 0.4 * 3.
+  // Behind it, facing the receiver: kick so that it rolls at v0 with v0^2 = 1.5^2 + 2 * 0.4 * 3.
   const wm::RobotState behind = robot_at({-kDribbler, 0}, 0);
   const MotionIntent kick = pass(scene.situation(), behind, params);
   EXPECT_EQ(kick.kick, KickType::kFlat);
-  EXPECT_NEAR(kick.kick_speed, std::sqrt(1.5 * 1.5 + 2 * 0.4 * 3), 1e-9);
+  EXPECT_NEAR(kick.kick_speed, std::sqrt(1.5 * 1.5 + 2 * 0.4 * 3) / 0.7, 1e-9);
 }
 
 TEST(Skills, ReceiveStandsOnTheBallsLineFacingIt) {

@@ -130,12 +130,12 @@ Vec2 TrajectoryMotionPlanner::guarded(const wm::RobotState& robot, Vec2 velocity
     const Vec2 toward = offset / distance;
     const double approach = velocity.dot(toward);
     if (approach <= 0) continue;
-    // Largest v with v * tau + v^2 / (2 a) <= our share of the gap: stops short of the margin, even when
-    // the other robot, moving away at w, brakes as hard as a robot can (it still goes w^2 / (2 b) further),
-    // or comes towards us doing the same (each robot keeps to half the gap).
+    // Largest v with v * tau + v^2 / (2 a) <= our share: half the gap (the other robot may come towards us
+    // doing the same), plus the way a robot moving away at w still goes when it brakes as hard as a robot
+    // can (w^2 / (2 b)).
     const double away = std::max(0.0, other.velocity.dot(toward));
-    const double gap = std::max(0.0, distance - touching) + away * away / (2 * params_.guard_other_braking);
-    const double share = gap / 2;
+    const double share =
+        std::max(0.0, distance - touching) / 2 + away * away / (2 * params_.guard_other_braking);
     const double allowed = a * (std::sqrt(tau * tau + 2 * share / a) - tau);
     if (approach > allowed) velocity -= (approach - allowed) * toward;
   }

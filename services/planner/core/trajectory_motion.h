@@ -35,13 +35,14 @@ struct TrajectoryMotionParams {
   double robot_prediction = 0.5;       // s a robot's measured velocity is extrapolated; then it stands
   // The contact guard, last before the command goes out: towards any robot, our speed may not exceed what
   // still stops us (after guard_latency at guard_deceleration) within half the gap that is left
-  // guard_margin short of touching it, even if that robot, moving away, brakes at guard_other_braking.
+  // guard_margin short of touching it, plus the way it goes on if, moving away, it brakes at
+  // guard_other_braking.
   // Two robots that both keep it never touch, whatever each predicts of the other; only a robot driving
   // into another can still touch it.
   double guard_margin = 0.03;          // m beyond two radii
   double guard_latency = 0.06;         // s until a command acts (vision delay, pipeline, one tick)
-  double guard_deceleration = 2.5;     // m/s^2 the guard counts on (below the robots' limit)
-  double guard_other_braking = 6.0;    // m/s^2: the hardest a robot ahead of us may brake
+  double guard_deceleration = 3.0;     // m/s^2 the guard counts on (below the robots' limit)
+  double guard_other_braking = 4.0;    // m/s^2: the hardest a robot ahead of us may brake
   // Sub-destinations per ring and tick; successive ticks turn the rings by half the spacing, so that two
   // ticks try twice as many directions (last tick's best is always tried again).
   PathSearchParams search = {.directions = 8};
