@@ -302,9 +302,10 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
         through(position + radius * Vec2(std::cos(angle), std::sin(angle)));
       }
     }
+    const int around_destination = std::max(1, params.directions / 2);
     for (const double radius : params.destination_radii) {
-      for (int i = 0; i < params.directions; ++i) {
-        const double angle = params.direction_offset + 2 * std::numbers::pi * i / params.directions;
+      for (int i = 0; i < around_destination; ++i) {
+        const double angle = params.direction_offset + 2 * std::numbers::pi * i / around_destination;
         through(destination + radius * Vec2(std::cos(angle), std::sin(angle)));
       }
     }

@@ -100,8 +100,9 @@ struct PathSearchParams {
   int directions = 16;                              // sub-destinations on each ring
   double direction_offset = 0;                      // rad, where on each ring the first one lies
   std::vector<double> radii = {0.5, 1.0, 2.0};  // m, rings around the robot
-  // m, rings around the destination: the way in to a destination close to obstacles (the placer getting
-  // behind a ball in a corner, next to a robot) is rarely on a ring around the robot.
+  // m, rings around the destination (half as many directions): the way in to a destination close to
+  // obstacles (the placer getting behind a ball in a corner, next to a robot) is rarely on a ring around
+  // the robot.
   std::vector<double> destination_radii = {0.4};
   std::vector<double> switch_times = {0.2, 0.5};    // s along the first trajectory
   double step = 0.1;  // s between collision checks (swept chords; obstacles grown by a * step^2 / 8 to cover the curve)
