@@ -32,6 +32,7 @@ struct MotionIntent {
   bool active = false;                    // false: no intent (the robot is stopped)
   bool halt = false;                      // zero velocity now, whatever else is set
   Vec2 target = Vec2::Zero();             // m
+  Vec2 target_velocity = Vec2::Zero();    // m/s the target moves at (a marked opponent): kept up with
   double orientation = 0;                 // rad, heading at the target
   double max_speed = 3.0;                 // m/s
   double max_angular_speed = std::numeric_limits<double>::infinity();  // rad/s (below the robot's limit)

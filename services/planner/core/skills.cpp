@@ -23,8 +23,8 @@ constexpr double kMaxDribble = rules::kMaxDribblingDistance - 0.1;
 constexpr double kIncomingSpeed = 0.5;
 /// m: the receiver gives way (cushions) once the ball is this close.
 constexpr double kCushionDistance = 0.4;
-/// s the marker aims ahead of where its opponent is.
-constexpr double kMarkLookahead = 0.3;
+/// s the marker aims ahead of where its opponent is (the latency it reacts with).
+constexpr double kMarkLookahead = 0.05;
 /// m: a slow ball this close to the receiving point is fetched by the receiver.
 constexpr double kTakeNearPoint = 1.0;
 
@@ -49,6 +49,13 @@ const wm::RobotState* find_enemy(const Situation& s, std::uint32_t id) {
     if (enemy.id == id) return &enemy;
   }
   return nullptr;
+}
+
+/// `intent` holding the robot where it is, facing the ball (its opponent is not seen).
+MotionIntent hold(const Situation& s, const wm::RobotState& robot, MotionIntent intent) {
+  intent.target = robot.position;
+  intent.orientation = heading_to(robot.position, s.ball);
+  return intent;
 }
 
 /// Drive through the ball along `u` with the kicker armed at `speed`.
@@ -348,16 +355,12 @@ MotionIntent open_space(const Situation& s, const wm::RobotState& /*robot*/, con
 MotionIntent man_mark(const Situation& s, const wm::RobotState& robot, const ManMarkParams& p) {
   MotionIntent intent = base(s, Skill::kManMark);
   const wm::RobotState* opponent = find_enemy(s, p.opponent);
-  if (!opponent) {
-    intent.target = robot.position;
-    intent.orientation = heading_to(robot.position, s.ball);
-    return intent;
-  }
-  // On its line to our goal centre, where it will be kMarkLookahead from now: a trajectory comes to rest at
-  // its target, so a target that moves on is only kept up with from ahead of it.
+  if (!opponent) return hold(s, robot, intent);
+  // On its line to our goal centre, where it will be kMarkLookahead from now, moving with it.
   const Vec2 predicted = opponent->position + opponent->velocity * kMarkLookahead;
   const Vec2 to_goal = unit_or(s.field.our_goal_center() - predicted, Vec2(-1, 0));
   intent.target = predicted + to_goal * p.distance;
+  intent.target_velocity = opponent->velocity;
   intent.orientation = heading_to(intent.target, s.ball);
   return intent;
 }
@@ -365,11 +368,7 @@ MotionIntent man_mark(const Situation& s, const wm::RobotState& robot, const Man
 MotionIntent block(const Situation& s, const wm::RobotState& robot, const BlockParams& p) {
   MotionIntent intent = base(s, Skill::kBlock);
   const wm::RobotState* opponent = find_enemy(s, p.opponent);
-  if (!opponent) {
-    intent.target = robot.position;
-    intent.orientation = heading_to(robot.position, s.ball);
-    return intent;
-  }
+  if (!opponent) return hold(s, robot, intent);
   const Vec2 heading = geom::Angle::from_radians(opponent->orientation).to_unit_vector();
   const Vec2 to_goal = unit_or(s.field.our_goal_center() - opponent->position, Vec2(-1, 0));
   const bool faces_goal = heading.dot(to_goal) > std::cos(p.facing_limit);

@@ -16,6 +16,7 @@ constexpr int kFreeTargetPasses = 3;            // moves of the target out of ro
 // (a few mm), and a path ending exactly on the radius would count as a collision at its end.
 constexpr double kFreeTargetClearance = 0.01;
 constexpr double kInsideZone = 0.005;     // m a robot centre may be inside a zone before it leaves it first
+constexpr double kFollowDistance = 1.0;   // m from a moving target within which a robot moves with it
 constexpr double kExitOvershoot = 0.05;   // m beyond a zone's edge that a robot leaving it heads for
 
 }  // namespace
@@ -200,6 +201,15 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   last_dt_ = dt;
   const TrajectoryPath& path = memory.planned->path;
   Vec2 velocity = path.velocity(dt);
+  if (intent.target_velocity.squaredNorm() > 0 && (target - start).norm() < kFollowDistance) {
+    // Near a moving target: plan to rest in the target's frame and add its velocity, so that the robot
+    // keeps up with it instead of braking for where it is now (the contact guard keeps it off robots).
+    const Vec2& vt = intent.target_velocity;
+    const TrajectoryLimits relative{.max_speed = std::max(0.5, limits.max_speed - std::min(vt.norm(), limits.max_speed)),
+                                    .max_acceleration = limits.max_acceleration};
+    velocity = Trajectory2D::plan(start, memory.velocity - vt, target, relative).velocity(dt) + vt;
+    if (velocity.norm() > limits.max_speed) velocity *= limits.max_speed / velocity.norm();
+  }
   if ((target - robot.position).norm() < kArrived && velocity.norm() < 0.05) velocity = Vec2::Zero();
   velocity = guarded(robot, velocity, zones);
 
