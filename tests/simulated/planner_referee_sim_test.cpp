@@ -1204,6 +1204,147 @@ TEST_P(PlannerSimReferee, ManMarkFollowsAMovingOpponentWithinOneMetreMostlyGoalS
                     std::to_string(ticks) + " ticks");
 }
 
+/// Only our robot `id` (and their robots in `theirs`) on the field; the others taken off.
+void only(LockstepMatch& m, std::uint32_t id, std::initializer_list<std::uint32_t> theirs = {}) {
+  for (std::uint32_t other = 0; other < kRobots; ++other) {
+    if (other != id) take_off(m, true, other);
+    if (std::find(theirs.begin(), theirs.end(), other) == theirs.end()) take_off(m, false, other);
+  }
+}
+
+const TrueRobot* true_robot(const LockstepMatch& m, bool ours, std::uint32_t id) {
+  for (const TrueRobot& r : m.truth().robots) {
+    if (r.ours == ours && r.id == id) return &r;
+  }
+  return nullptr;
+}
+
+/// Ticks until `done` holds or `limit` s of simulated time passed; true when it held.
+bool run_until(LockstepMatch& m, double limit, const std::function<bool()>& done) {
+  const double until = m.time() + limit;
+  while (m.time() < until) {
+    m.tick();
+    if (done()) return true;
+  }
+  return false;
+}
+
+TEST_P(PlannerSimReferee, GoToBallThenDribbleAndTurnWithItKeepTheBall) {
+  // Go to ball: the ball on the dribbler within 4 s. Go to point with the ball, 2 m away: the dribble stops
+  // within the rules' 1 m and the ball is still held. Turn with ball by 90 degrees: heading reached within
+  // 0.1 rad in 3 s, the ball still held.
+  LockstepMatch m(param(), seed());
+  only(m, 1);
+  const Vec2 ball(0.5, 0.5);
+  m.place_ball(ball);
+  m.place(true, 1, {-0.5, -0.3}, 1.0);
+  m.planner(true).override_skill(1, SkillOverride{GoToBallParams{}});
+  m.script({{kWarmUp, RefereeCommand::kForceStart}});
+  const auto holds = [&] { return true_robot(m, true, 1)->dribbler_contact; };
+  ASSERT_TRUE(run_until(m, kWarmUp + 4.0, holds)) << "go to ball: no contact";
+  const Vec2 start = m.truth().ball;
+  const double heading = std::atan2(start.y() - true_robot(m, true, 1)->position.y(),
+                                    start.x() - true_robot(m, true, 1)->position.x());
+  m.planner(true).override_skill(
+      1, SkillOverride{GoToPointParams{.point = start + Vec2(2.0, 0.0), .orientation = heading, .with_ball = true,
+                                       .dribble_start = start}});
+  double furthest = 0;
+  (void)run_until(m, 4.0, [&] {
+    furthest = std::max(furthest, (m.truth().ball - start).norm());
+    return false;
+  });
+  EXPECT_LE(furthest, rules::kMaxDribblingDistance) << "dribbled beyond the rules' limit";
+  EXPECT_GT(furthest, 0.5) << "the dribble went somewhere";
+  EXPECT_TRUE(holds()) << "the ball was lost on the dribble";
+  const double turned = heading + M_PI / 2;
+  m.planner(true).override_skill(1, SkillOverride{TurnWithBallParams{.orientation = turned}});
+  (void)run_until(m, 3.0, [] { return false; });
+  const Vec2 facing = (m.truth().ball - true_robot(m, true, 1)->position).normalized();
+  EXPECT_NEAR(std::remainder(std::atan2(facing.y(), facing.x()) - turned, 2 * M_PI), 0.0, 0.1)
+      << "the ball (in front of the dribbler) turned with the robot";
+  EXPECT_TRUE(holds()) << "the ball was lost in the turn";
+}
+
+TEST_P(PlannerSimReferee, ClearSendsTheBallOutOfOurHalfAwayFromTheOpponents) {
+  // The ball in front of our defense area, two of their robots straight upfield: clear kicks it out of our
+  // half within 4 s, past them on the open side.
+  LockstepMatch m(param(), seed());
+  only(m, 1, {1, 2});
+  const double x = -m.half_length() + m.field().penalty_area_depth + 0.5;
+  m.place_ball({x, 0.0});
+  m.place(true, 1, {x - 0.6, 0.3}, 0.0);
+  m.place(false, 1, {x + 1.2, 0.0}, M_PI);
+  m.place(false, 2, {x + 1.2, 0.35}, M_PI);
+  m.planner(true).override_skill(1, SkillOverride{ClearParams{}});
+  m.planner(false).override_skill(1, SkillOverride{StopParams{}});
+  m.planner(false).override_skill(2, SkillOverride{StopParams{}});
+  m.script({{kWarmUp, RefereeCommand::kForceStart}});
+  EXPECT_TRUE(run_until(m, kWarmUp + 4.0, [&] { return m.truth().ball.x() > 0; }))
+      << "ball at " << m.truth().ball.transpose();
+}
+
+TEST_P(PlannerSimReferee, StopBrakesARunningRobotToAStandstill) {
+  // Running at full speed, stop: standing (< 0.05 m/s) within what braking at the simulator's 4 m/s^2
+  // takes, plus 0.2 s.
+  LockstepMatch m(param(), seed());
+  only(m, 1);
+  m.place_ball({2.0, 2.0});
+  m.place(true, 1, {-2.5, -1.0}, 0.0);
+  m.planner(true).override_skill(1, SkillOverride{GoToPointParams{.point = {2.5, -1.0}}});
+  m.script({{kWarmUp, RefereeCommand::kForceStart}});
+  (void)run_until(m, kWarmUp + 1.2, [] { return false; });
+  const double speed = true_robot(m, true, 1)->speed();
+  ASSERT_GT(speed, 2.0) << "running";
+  m.planner(true).override_skill(1, SkillOverride{StopParams{}});
+  const double allowance = speed / m.sim().options().blue_spec.limits.acc_brake_absolute_max + 0.2;
+  EXPECT_TRUE(run_until(m, allowance, [&] { return true_robot(m, true, 1)->speed() < kHaltSpeed; }))
+      << "still at " << true_robot(m, true, 1)->speed() << " m/s after " << allowance << " s";
+}
+
+TEST_P(PlannerSimReferee, OpenSpaceFindsRoomAwayFromTheOpponentsAroundItsAnchor) {
+  // Three of their robots around the anchor: the robot ends within 1 m of it, at least 0.6 m from each.
+  LockstepMatch m(param(), seed());
+  only(m, 1, {1, 2, 3});
+  m.place_ball({-1.0, 0.0});
+  const Vec2 anchor(0.5, 1.0);
+  m.place(false, 1, anchor + Vec2(0.2, 0.0), M_PI);
+  m.place(false, 2, anchor + Vec2(-0.3, 0.3), M_PI);
+  m.place(false, 3, anchor + Vec2(0.0, -0.4), M_PI);
+  for (std::uint32_t id : {1u, 2u, 3u}) m.planner(false).override_skill(id, SkillOverride{StopParams{}});
+  m.place(true, 1, {-1.5, 1.5}, 0.0);
+  m.planner(true).override_skill(1, SkillOverride{OpenSpaceParams{.anchor = anchor, .radius = 1.0}});
+  m.script({{kWarmUp, RefereeCommand::kForceStart}});
+  (void)run_until(m, kWarmUp + 4.0, [] { return false; });
+  const Vec2 at = true_robot(m, true, 1)->position;
+  EXPECT_LE((at - anchor).norm(), 1.05);
+  for (std::uint32_t id : {1u, 2u, 3u}) EXPECT_GE((true_robot(m, false, id)->position - at).norm(), 0.6) << id;
+}
+
+TEST_P(PlannerSimReferee, BlockStandsInTheMouthThenOnTheLineOfSight) {
+  // Their robot 4 with the ball, facing our goal: our blocker ends in its mouth (in front of its kicker,
+  // within 0.1 m of the point 0.3 m ahead of it). Turned away from our goal: on its line to our goal centre.
+  LockstepMatch m(param(), seed());
+  only(m, 1, {4});
+  const Vec2 possessor(-1.5, 0.8);
+  m.place(false, 4, possessor, M_PI);  // facing our goal
+  m.place_ball(possessor + Vec2(-0.11, 0.0));
+  m.planner(false).override_skill(4, SkillOverride{StopParams{}});
+  m.place(true, 1, {-2.5, -0.5}, 0.0);
+  m.planner(true).override_skill(1, SkillOverride{BlockParams{.opponent = 4}});
+  m.script({{kWarmUp, RefereeCommand::kForceStart}});
+  (void)run_until(m, kWarmUp + 3.0, [] { return false; });
+  const Vec2 mouth = possessor + Vec2(-0.3, 0.0);
+  EXPECT_LE((true_robot(m, true, 1)->position - mouth).norm(), 0.1)
+      << "at " << true_robot(m, true, 1)->position.transpose();
+  // Turned to face +y (our frame): away from our goal by more than the facing limit.
+  m.place(false, 4, possessor, M_PI / 2);
+  (void)run_until(m, 3.0, [] { return false; });
+  const Vec2 goal(-m.half_length(), 0);
+  const Vec2 sight = possessor + (goal - possessor).normalized() * 0.3;
+  EXPECT_LE((true_robot(m, true, 1)->position - sight).norm(), 0.1)
+      << "at " << true_robot(m, true, 1)->position.transpose();
+}
+
 INSTANTIATE_TEST_SUITE_P(PlannerSim, PlannerSimReferee, ::testing::ValuesIn(all_cases()),
                          [](const ::testing::TestParamInfo<Case>& p) { return p.param.name(); });
 
