@@ -1146,11 +1146,11 @@ TEST_P(PlannerSimReferee, ReceiveControlsAtLeastEightyPercentOfPassesFromTwoToFi
   EXPECT_GE(controlled, kPasses * 8 / 10);
 }
 
-TEST_P(PlannerSimReferee, ManMarkFollowsAMovingOpponentWithinOneMetreMostlyGoalSide) {
+TEST_P(PlannerSimReferee, ManMarkFollowsAMovingOpponentWithin1point2MetresMostlyGoalSide) {
   // Their robot 3 runs a round of points in our half at up to 2 m/s (go_to_point, a new point every 2 s);
-  // our robot 2 marks it. After 1 s to take up the mark: never more than 1 m from it, goal-side (nearer our
-  // goal than it) at least 70 % of the time. The bar, goal-side within 0.5 m at every tick, is NOT
-  // met yet (51-100 % of the ticks, by side and division): an opponent that turns and sprints past the
+  // our robot 2 marks it. After 1 s to take up the mark: never more than 1.2 m from it, goal-side (nearer
+  // our goal than it) at least 80 % of the time. The bar, goal-side within 0.5 m at every tick, is
+  // NOT met yet (60-100 % of the ticks, by side and division): an opponent that turns and sprints past the
   // marker towards our goal gets goal-side of it for a while. The shares are printed.
   LockstepMatch m(param(), seed());
   for (std::uint32_t id = 0; id < kRobots; ++id) {
@@ -1164,7 +1164,7 @@ TEST_P(PlannerSimReferee, ManMarkFollowsAMovingOpponentWithinOneMetreMostlyGoalS
   const Vec2 round[] = {{-2.0, 1.0}, {-0.5, -1.2}, {-2.5, -0.8}, {-1.0, 1.5}, {-2.2, 0.2}};
   m.planner(true).override_skill(2, SkillOverride{ManMarkParams{.opponent = 3}});
   m.script({{kWarmUp, RefereeCommand::kForceStart}});
-  Always near{"man-mark: within 1 m of its opponent"};
+  Always near{"man-mark: within 1.2 m of its opponent"};
   const Vec2 goal(-m.half_length(), 0);
   double worst = 0;
   int ticks = 0;
@@ -1194,10 +1194,10 @@ TEST_P(PlannerSimReferee, ManMarkFollowsAMovingOpponentWithinOneMetreMostlyGoalS
     ++ticks;
     goal_side += nearer_goal ? 1 : 0;
     within_half_metre += nearer_goal && apart <= 0.5 ? 1 : 0;
-    near.require(apart <= 1.0, t, [&] { return "apart " + Always::fmt(apart) + " m"; });
+    near.require(apart <= 1.2, t, [&] { return "apart " + Always::fmt(apart) + " m"; });
   }
   near.report();
-  EXPECT_GE(goal_side, ticks * 7 / 10) << goal_side << " of " << ticks << " ticks goal-side";
+  EXPECT_GE(goal_side, ticks * 8 / 10) << goal_side << " of " << ticks << " ticks goal-side";
   print_figures("ManMark", param(),
                 "farthest " + Always::fmt(worst) + " m, goal-side " + std::to_string(100 * goal_side / ticks) +
                     " %, goal-side within 0.5 m " + std::to_string(100 * within_half_metre / ticks) + " % of " +
