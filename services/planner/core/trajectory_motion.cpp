@@ -182,10 +182,20 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
       (intent.avoid_placement_corridor && zones.placement_corridor &&
        geom::contains(*zones.placement_corridor, robot.position));
   const Vec2 exit = project_out(robot.position, intent, zones);
-  const Vec2 target =
+  Vec2 target =
       must_leave && (exit - robot.position).norm() > kInsideZone
           ? Vec2(exit + geom::normalized_or_zero(Vec2(exit - robot.position)) * kExitOvershoot)
           : project_out(free_target(robot, project_out(intent.target, intent, zones), obstacles), intent, zones);
+  // Inside a goal (behind its line, between its side walls) the only way out is its mouth: straight out
+  // first, whatever the target (a sideways exit drives into the goal's wall).
+  const double goal_line = zones.field.half_length();
+  const auto in_goal = [&](const Vec2& p) {
+    return std::abs(p.x()) > goal_line && std::abs(p.y()) < zones.field.size().goal_width / 2;
+  };
+  if (in_goal(robot.position) && !(in_goal(target) && target.x() * robot.position.x() > 0)) {
+    const double side = robot.position.x() > 0 ? 1.0 : -1.0;
+    target = {side * (goal_line - params_.robot_radius - kExitOvershoot), robot.position.y()};
+  }
   PathSearchParams search = params_.search;
   // Odd ticks: the rings turned by half their spacing, and a collision further away than near_collision
   // waits for the next tick to be sampled (half the sampling work where nothing is urgent).

@@ -44,6 +44,24 @@ TEST(TrajectoryMotion, ATargetAnOpponentStandsOnMovesToItsEdge) {
   EXPECT_LT(path.back().x(), 0.05) << "on our side of it";
 }
 
+TEST(TrajectoryMotion, ARobotInsideAGoalLeavesThroughItsMouthFirst) {
+  // Default field (division A): goal line x = 6, mouth |y| < 0.9. A robot deep in the goal, sent to a
+  // point beside it: straight out of the mouth (its path ends in front of the line at the same y).
+  TrajectoryMotionPlanner motion(MotionLimits{});
+  Zones zones;
+  const wm::RobotState robot = robot_at({6.1, -0.6});
+  zones.robots.push_back({.id = 1, .ours = true, .position = robot.position});
+  MotionIntent intent = go_to({5.5, -2.5});
+  motion.begin_tick();
+  (void)motion.plan(robot, intent, zones, 0.01);
+  std::vector<Vec2> path;
+  std::optional<double> error;
+  motion.describe(1, 0.1, path, error);
+  ASSERT_FALSE(path.empty());
+  EXPECT_LT(path.back().x(), 6.0) << "out in front of the goal line";
+  EXPECT_NEAR(path.back().y(), -0.6, 1e-9) << "straight out, not through the side wall";
+}
+
 TEST(TrajectoryMotion, HaltAndInactiveIntentsStopAtOnce) {
   TrajectoryMotionPlanner motion(MotionLimits{});
   const wm::RobotState robot = robot_at({0, 0}, 0, 2);
