@@ -79,6 +79,10 @@ class Field {
            std::abs(p.y()) <= size_.penalty_area_width / 2 + margin;
   }
   bool in_center_circle(const Vec2& p) const { return p.norm() <= size_.center_circle_radius; }
+  /// Inside either goal: behind its goal line, between its side walls.
+  bool in_goal(const Vec2& p) const {
+    return std::abs(p.x()) > half_length() && std::abs(p.y()) < size_.goal_width / 2;
+  }
 
  private:
   FieldSize size_;

@@ -39,6 +39,12 @@ inline Vec2 normalized_or_zero(const Vec2& v) {
   return v / norm;
 }
 
+// Unit vector along v, or `fallback` when v is the zero vector.
+inline Vec2 normalized_or(const Vec2& v, const Vec2& fallback) {
+  const Vec2 u = normalized_or_zero(v);
+  return u.squaredNorm() > 0 ? u : fallback;
+}
+
 // Direction of v counter-clockwise from +x, in (-pi, pi]; the zero vector gives zero.
 inline Angle angle_of(const Vec2& v) { return Angle::from_vector(v); }
 

@@ -57,13 +57,7 @@ double ball_clearance(const Situation& s) {
   return s.config->ball_keep_away + s.config->robot_radius + s.config->keep_away_margin;
 }
 double stop_speed(const Situation& s) { return s.config->stop_speed - s.config->stop_speed_margin; }
-double dribbler_distance(const Situation& s) { return radius(s) + s.field.size().ball_radius; }
-double heading_to(const Vec2& from, const Vec2& to) { return geom::angle_of(to - from).radians(); }
 double sign_or_one(double v) { return v < 0 ? -1.0 : 1.0; }
-Vec2 unit_or(const Vec2& v, const Vec2& fallback) {
-  const Vec2 u = geom::normalized_or_zero(v);
-  return u.squaredNorm() > 0 ? u : fallback;
-}
 
 MotionIntent base_intent(const Situation& s, std::string_view tactic) {
   MotionIntent intent;
@@ -136,7 +130,7 @@ void add_generic(const Situation& s, Formation& f) {
 /// Between the ball and our goal: a two-robot wall, two defenders, then supporters.
 Formation defensive_set(const Situation& s) {
   Formation f;
-  const Vec2 u = unit_or(s.field.our_goal_center() - s.ball, Vec2(-1, 0));
+  const Vec2 u = geom::normalized_or(s.field.our_goal_center() - s.ball, Vec2(-1, 0));
   const Vec2 wall = s.ball + u * (ball_clearance(s) + 0.1);
   const Vec2 side = geom::perpendicular(u) * (radius(s) + 0.03);
   f.add(wall + side, "wall");
@@ -319,7 +313,7 @@ void write_keeper(const Situation& s, const MotionIntent& tmpl, bool touch_line,
 /// The kicker of a restart before it may touch the ball: behind the ball towards `aim`, `distance` from it.
 MotionIntent staging_intent(const Situation& s, const MotionIntent& tmpl, const Vec2& aim, double distance) {
   MotionIntent intent = tmpl;
-  const Vec2 u = unit_or(aim - s.ball, Vec2(1, 0));
+  const Vec2 u = geom::normalized_or(aim - s.ball, Vec2(1, 0));
   intent.target = s.ball - u * distance;
   intent.orientation = geom::angle_of(u).radians();
   intent.avoid_ball_radius =
@@ -382,7 +376,7 @@ void keep_kickoff_legal(const Situation& s, TeamIntents& out, std::optional<std:
     if (!intent.active) continue;
     Vec2& p = intent.target;
     p.x() = std::min(p.x(), -margin);
-    if (p.norm() < circle) p = unit_or(p, Vec2(-1, 0)) * circle;
+    if (p.norm() < circle) p = geom::normalized_or(p, Vec2(-1, 0)) * circle;
   }
 }
 
@@ -487,7 +481,7 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
     const bool holds_ball = rel.norm() < dd + 0.04 && (-rel).normalized().dot(heading) > std::cos(0.35);
     const double ball_error = (s.ball - target).norm();
     const PullBackParams pull;
-    const Vec2 u = unit_or(target - s.ball, heading);
+    const Vec2 u = geom::normalized_or(target - s.ball, heading);
     const bool from_behind = approachable_from_behind(s, s.ball, u, 0);
     using P = PlayMemory::PlacePhase;
     switch (memory.place_phase) {
@@ -560,7 +554,7 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
       }
       case P::kCarry: {
         const Vec2 to_target = target - placer->position;
-        const Vec2 dir = to_target.norm() > 0.25 ? unit_or(to_target, heading) : heading;
+        const Vec2 dir = to_target.norm() > 0.25 ? geom::normalized_or(to_target, heading) : heading;
         intent.target = target - dir * dd;
         intent.orientation = geom::angle_of(dir).radians();
         intent.dribble = true;
@@ -578,7 +572,7 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
         break;
       case P::kRelease:
         // Straight away from the ball (behind the dribbler after a carry).
-        intent.target = s.ball + unit_or(rel, -heading) * (ball_clearance(s) + 0.05);
+        intent.target = s.ball + geom::normalized_or(rel, -heading) * (ball_clearance(s) + 0.05);
         intent.orientation = placer->orientation;
         intent.max_speed = 0.5;
         intent.skill = "release_ball";
@@ -720,7 +714,7 @@ std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s
 bool attacker_ready_to_kick(const Situation& s, std::uint32_t attacker) {
   const wm::RobotState* robot = find_robot(s, attacker);
   if (!robot || !s.ball_known) return false;
-  return behind_ball_facing(s, *robot, unit_or(shot_target(s, attacker) - s.ball, Vec2(1, 0)), 0.1);
+  return behind_ball_facing(s, *robot, geom::normalized_or(shot_target(s, attacker) - s.ball, Vec2(1, 0)), 0.1);
 }
 
 void strategy_kick(const Situation& s, std::uint32_t attacker, TeamIntents& out) {

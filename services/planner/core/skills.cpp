@@ -29,12 +29,6 @@ constexpr double kMarkLookahead = 0.05;
 constexpr double kTakeNearPoint = 1.0;
 
 double radius(const Situation& s) { return s.config->robot_radius; }
-double dribbler_distance(const Situation& s) { return radius(s) + s.field.size().ball_radius; }
-double heading_to(const Vec2& from, const Vec2& to) { return geom::angle_of(to - from).radians(); }
-Vec2 unit_or(const Vec2& v, const Vec2& fallback) {
-  const Vec2 u = geom::normalized_or_zero(v);
-  return u.squaredNorm() > 0 ? u : fallback;
-}
 
 MotionIntent base(const Situation& s, Skill skill) {
   MotionIntent intent;
@@ -133,24 +127,16 @@ std::string_view skill_name(Skill skill) {
 }
 
 Skill skill_of(const SkillCall& call) {
-  return std::visit(
-      [](const auto& p) {
-        using P = std::decay_t<decltype(p)>;
-        if constexpr (std::is_same_v<P, PassParams>) return Skill::kPass;
-        if constexpr (std::is_same_v<P, ReceiveParams>) return Skill::kReceive;
-        if constexpr (std::is_same_v<P, GoToBallParams>) return Skill::kGoToBall;
-        if constexpr (std::is_same_v<P, GoToPointParams>) return Skill::kGoToPoint;
-        if constexpr (std::is_same_v<P, TurnWithBallParams>) return Skill::kTurnWithBall;
-        if constexpr (std::is_same_v<P, ClearParams>) return Skill::kClear;
-        if constexpr (std::is_same_v<P, ShootParams>) return Skill::kShoot;
-        if constexpr (std::is_same_v<P, StopParams>) return Skill::kStop;
-        if constexpr (std::is_same_v<P, OpenSpaceParams>) return Skill::kOpenSpace;
-        if constexpr (std::is_same_v<P, ManMarkParams>) return Skill::kManMark;
-        if constexpr (std::is_same_v<P, BlockParams>) return Skill::kBlock;
-        if constexpr (std::is_same_v<P, DefendGoalParams>) return Skill::kDefendGoal;
-      },
-      call);
+  // SkillCall lists its params in Skill's order.
+  static_assert(std::variant_size_v<SkillCall> == static_cast<std::size_t>(Skill::kDefendGoal) + 1);
+  static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(Skill::kDefendGoal), SkillCall>,
+                               DefendGoalParams>);
+  return static_cast<Skill>(call.index());
 }
+
+double dribbler_distance(const Situation& s) { return radius(s) + s.field.size().ball_radius; }
+
+double heading_to(const Vec2& from, const Vec2& to) { return geom::angle_of(to - from).radians(); }
 
 bool behind_ball_facing(const Situation& s, const wm::RobotState& robot, const Vec2& u, double max_heading_error) {
   const Vec2 rel = robot.position - s.ball;
@@ -207,13 +193,13 @@ MotionIntent pass(const Situation& s, const wm::RobotState& robot, const PassPar
   // Rolling at v0 (after the slide) it slows to v over d when v0^2 = v^2 + 2 a d.
   const double rolling = std::sqrt(p.arrival_speed * p.arrival_speed + 2 * p.ball_deceleration * distance);
   const double speed = rolling / p.rolling_fraction;
-  return kick_along(s, robot, unit_or(to, Vec2(1, 0)), speed, Skill::kPass);
+  return kick_along(s, robot, geom::normalized_or(to, Vec2(1, 0)), speed, Skill::kPass);
 }
 
 MotionIntent receive(const Situation& s, const wm::RobotState& robot, const ReceiveParams& p) {
   const double dd = dribbler_distance(s);
   const double speed = s.ball_velocity.norm();
-  const Vec2 v = unit_or(s.ball_velocity, Vec2(1, 0));
+  const Vec2 v = geom::normalized_or(s.ball_velocity, Vec2(1, 0));
   const bool incoming = s.ball_known && speed > kIncomingSpeed && (p.point - s.ball).dot(v) > 0;
   if (!incoming) {
     // A slow ball near the point is ours to take, gently; otherwise wait at the point, facing the ball.
@@ -244,7 +230,7 @@ MotionIntent receive(const Situation& s, const wm::RobotState& robot, const Rece
 
 MotionIntent go_to_ball(const Situation& s, const wm::RobotState& robot, const GoToBallParams& p) {
   MotionIntent intent = base(s, Skill::kGoToBall);
-  const Vec2 u = unit_or(s.ball - robot.position, Vec2(1, 0));
+  const Vec2 u = geom::normalized_or(s.ball - robot.position, Vec2(1, 0));
   const double dd = dribbler_distance(s);
   intent.orientation = geom::angle_of(u).radians();
   intent.dribble = true;
@@ -288,7 +274,7 @@ MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const C
   // Directions from straight upfield to 80 degrees either side whose kicking spot behind the ball lies on
   // the field (a ball on the goal line is cleared along it): the one whose nearest opponent (within 3 m of
   // the ball) is angularly furthest away. None: straight away from our goal centre.
-  Vec2 best = unit_or(s.ball - s.field.our_goal_center(), Vec2(1, 0));
+  Vec2 best = geom::normalized_or(s.ball - s.field.our_goal_center(), Vec2(1, 0));
   double best_room = -1;
   const double behind = dribbler_distance(s) + 0.2;  // where approach_ball takes the robot
   for (int i = -8; i <= 8; ++i) {
@@ -310,7 +296,7 @@ MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const C
 }
 
 MotionIntent shoot(const Situation& s, const wm::RobotState& robot, const ShootParams& p) {
-  const Vec2 u = unit_or(shot_target(s, robot.id) - s.ball, Vec2(1, 0));
+  const Vec2 u = geom::normalized_or(shot_target(s, robot.id) - s.ball, Vec2(1, 0));
   return kick_along(s, robot, u, p.speed.value_or(s.config->kick_speed), Skill::kShoot);
 }
 
@@ -358,7 +344,7 @@ MotionIntent man_mark(const Situation& s, const wm::RobotState& robot, const Man
   if (!opponent) return hold(s, robot, intent);
   // On its line to our goal centre, where it will be kMarkLookahead from now, moving with it.
   const Vec2 predicted = opponent->position + opponent->velocity * kMarkLookahead;
-  const Vec2 to_goal = unit_or(s.field.our_goal_center() - predicted, Vec2(-1, 0));
+  const Vec2 to_goal = geom::normalized_or(s.field.our_goal_center() - predicted, Vec2(-1, 0));
   intent.target = predicted + to_goal * p.distance;
   intent.target_velocity = opponent->velocity;
   intent.orientation = heading_to(intent.target, s.ball);
@@ -370,7 +356,7 @@ MotionIntent block(const Situation& s, const wm::RobotState& robot, const BlockP
   const wm::RobotState* opponent = find_enemy(s, p.opponent);
   if (!opponent) return hold(s, robot, intent);
   const Vec2 heading = geom::Angle::from_radians(opponent->orientation).to_unit_vector();
-  const Vec2 to_goal = unit_or(s.field.our_goal_center() - opponent->position, Vec2(-1, 0));
+  const Vec2 to_goal = geom::normalized_or(s.field.our_goal_center() - opponent->position, Vec2(-1, 0));
   const bool faces_goal = heading.dot(to_goal) > std::cos(p.facing_limit);
   // Phase 1: in its mouth (where a kick would go). Phase 2: on its line of sight to our goal.
   const Vec2 direction = faces_goal ? heading : to_goal;
@@ -386,14 +372,14 @@ MotionIntent defend_goal(const Situation& s, const wm::RobotState& /*robot*/, co
   const double goal_line = -s.field.half_length();
   const double x = p.touch_line ? goal_line + radius(s) * 0.6 : goal_line + radius(s) + 0.05;
   // On the bisector of the angle the two posts make at the ball: the keeper covers both sides equally.
-  const double half = s.field.size().goal_width / 2;
-  const Vec2 left = unit_or(Vec2(goal_line, half) - s.ball, Vec2(-1, 0));
-  const Vec2 right = unit_or(Vec2(goal_line, -half) - s.ball, Vec2(-1, 0));
-  const Vec2 bisector = unit_or(left + right, Vec2(-1, 0));
+  const auto [left_post, right_post] = s.field.our_goal_posts();
+  const Vec2 left = geom::normalized_or(left_post - s.ball, Vec2(-1, 0));
+  const Vec2 right = geom::normalized_or(right_post - s.ball, Vec2(-1, 0));
+  const Vec2 bisector = geom::normalized_or(left + right, Vec2(-1, 0));
   double y = 0;
   if (s.ball.x() > x + 1e-6 && bisector.x() < -1e-6) y = s.ball.y() + bisector.y() * (x - s.ball.x()) / bisector.x();
   if (const std::optional<double> crossing = shot_crossing(s, x)) y = *crossing;  // intercept on its line
-  const double max_y = half - radius(s);
+  const double max_y = s.field.size().goal_width / 2 - radius(s);
   intent.target = {x, std::clamp(y, -max_y, max_y)};
   intent.orientation = heading_to(intent.target, s.ball);
   return intent;

@@ -129,6 +129,11 @@ MotionIntent run_skill(const Situation& s, const wm::RobotState& robot, const Sk
 
 // ---- shared by the skills and the plays ----
 
+/// m from a robot's centre to the ball's centre when the ball touches its dribbler.
+double dribbler_distance(const Situation& s);
+/// rad, the heading that faces `to` from `from`.
+double heading_to(const Vec2& from, const Vec2& to);
+
 /// Where a shot goes in: the middle of the widest part of their goal mouth that no robot (but `shooter`)
 /// hides from the ball; the goal centre when all of it is hidden.
 Vec2 shot_target(const Situation& s, std::optional<std::uint32_t> shooter = std::nullopt);

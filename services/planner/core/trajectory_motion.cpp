@@ -1,11 +1,10 @@
 #include "services/planner/core/trajectory_motion.h"
 
-#include "libs/geometry/contains.h"
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
+#include "libs/geometry/contains.h"
 
 namespace ssl::planner {
 namespace {
@@ -56,6 +55,14 @@ TrajectoryMotionPlanner::Obstacles TrajectoryMotionPlanner::obstacles_for(const 
   obstacles.circles.reserve(zones.robots.size() + 1);
   obstacles.paths.reserve(zones.robots.size());
   const double touching = 2 * params_.robot_radius;
+  // A robot where its velocity takes it (the other robots come first in `circles`).
+  const auto add_robot = [&](const ZoneRobot& other, double margin) {
+    obstacles.circles.push_back({.position = other.position,
+                                 .velocity = other.velocity,
+                                 .radius = touching + margin,
+                                 .moving_for = params_.robot_prediction});
+    ++out.robots;
+  };
   for (const ZoneRobot& other : zones.robots) {
     if (other.ours && other.id == robot.id) continue;
     if (other.ours) {
@@ -73,18 +80,10 @@ TrajectoryMotionPlanner::Obstacles TrajectoryMotionPlanner::obstacles_for(const 
                                    .samples = std::abs(dt - last_dt_) < 1e-12 ? planned->previous_samples : nullptr});
         continue;
       }
-      obstacles.circles.push_back({.position = other.position,
-                                   .velocity = other.velocity,
-                                   .radius = touching + params_.our_margin,
-                                   .moving_for = params_.robot_prediction});
-      ++out.robots;
+      add_robot(other, params_.our_margin);
       continue;
     }
-    obstacles.circles.push_back({.position = other.position,
-                                 .velocity = other.velocity,
-                                 .radius = touching + params_.their_margin,
-                                 .moving_for = params_.robot_prediction});
-    ++out.robots;
+    add_robot(other, params_.their_margin);
   }
   if (intent.avoid_their_defense_area) obstacles.rectangles.push_back(their_defense_zone(zones));
   if (intent.avoid_our_defense_area) obstacles.rectangles.push_back(our_defense_zone(zones));
@@ -181,20 +180,17 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
       (intent.avoid_our_defense_area && our_defense_zone(zones).contains(robot.position)) ||
       (intent.avoid_placement_corridor && zones.placement_corridor &&
        geom::contains(*zones.placement_corridor, robot.position));
-  const Vec2 exit = project_out(robot.position, intent, zones);
+  const Vec2 exit = must_leave ? project_out(robot.position, intent, zones) : robot.position;
   Vec2 target =
-      must_leave && (exit - robot.position).norm() > kInsideZone
+      (exit - robot.position).norm() > kInsideZone
           ? Vec2(exit + geom::normalized_or_zero(Vec2(exit - robot.position)) * kExitOvershoot)
           : project_out(free_target(robot, project_out(intent.target, intent, zones), obstacles), intent, zones);
-  // Inside a goal (behind its line, between its side walls) the only way out is its mouth: straight out
-  // first, whatever the target (a sideways exit drives into the goal's wall).
-  const double goal_line = zones.field.half_length();
-  const auto in_goal = [&](const Vec2& p) {
-    return std::abs(p.x()) > goal_line && std::abs(p.y()) < zones.field.size().goal_width / 2;
-  };
-  if (in_goal(robot.position) && !(in_goal(target) && target.x() * robot.position.x() > 0)) {
+  // Inside a goal the only way out is its mouth: straight out first, whatever the target (a sideways exit
+  // drives into the goal's wall).
+  const wm::Field& field = zones.field;
+  if (field.in_goal(robot.position) && !(field.in_goal(target) && target.x() * robot.position.x() > 0)) {
     const double side = robot.position.x() > 0 ? 1.0 : -1.0;
-    target = {side * (goal_line - params_.robot_radius - kExitOvershoot), robot.position.y()};
+    target = {side * (field.half_length() - params_.robot_radius - kExitOvershoot), robot.position.y()};
   }
   PathSearchParams search = params_.search;
   // Odd ticks: the rings turned by half their spacing, and a collision further away than near_collision
