@@ -58,7 +58,7 @@ Figures play(const ssl::sim::FieldGeometry& field, std::uint32_t robots, double 
         if (closest < 2 * field.max_robot_radius + 0.01) ++out.close_frames;
       });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out.simulated = ssl::time::to_seconds(match.sim().snapshot().time - match.start());
+  out.simulated = ssl::time::to_seconds(match.sim().time() - match.start());
   out.realtime_factor = out.simulated / wall;
   out.report = report.report();
   return out;
@@ -137,8 +137,12 @@ int main(int argc, char** argv) {
               "'simulation'), halves of %.0f s, seed %llu, %s motion\n\n", half, static_cast<unsigned long long>(seed),
               motion == ssl::planner::MotionControl::kSimple ? "simple" : "trajectory");
   if (robots != "11") {
-    print("6 v 6 division B", play(ssl::sim::FieldGeometry::division_b(), 6, half, seed, motion), " (budget >= 20x)");
+    print("6 v 6 division B", play(ssl::sim::FieldGeometry::division_b(), 6, half, seed, motion),
+          " (budget >= 40x, ../shared/design.md)");
   }
-  if (robots != "6") print("11 v 11 division A", play(ssl::sim::FieldGeometry::division_a(), 11, half, seed, motion), "");
+  if (robots != "6") {
+    print("11 v 11 division A", play(ssl::sim::FieldGeometry::division_a(), 11, half, seed, motion),
+          " (budget >= 30x with trajectories, planner II; design >= 50x)");
+  }
   return 0;
 }

@@ -14,7 +14,7 @@ using std::chrono::duration_cast;
 /// Maps simulated time onto Unix time for vision packets: at start, simulated time reads the wall clock.
 time::Duration unix_offset_now(const Simulator& sim) {
   const auto wall = duration_cast<time::Duration>(std::chrono::system_clock::now().time_since_epoch());
-  return wall - sim.snapshot().time.since_epoch();
+  return wall - sim.time().since_epoch();
 }
 
 class Reporter {
@@ -29,7 +29,7 @@ class Reporter {
     const auto now = SteadyClock::now();
     if (now - last_ < std::chrono::seconds(1)) return;
     const double wall = duration<double>(now - last_).count();
-    const double simulated = (sim_.snapshot().time - last_sim_).count() * 1e-9;
+    const double simulated = (sim_.time() - last_sim_).count() * 1e-9;
     const ServerCounters counters = server_.counters();
     const double rate = static_cast<double>(iterations_) / wall;
     char line[256];
@@ -52,7 +52,7 @@ class Reporter {
                                            {"geometry_packets_sent", counters.geometry_packets_sent}}});
     }
     last_ = now;
-    last_sim_ = sim_.snapshot().time;
+    last_sim_ = sim_.time();
     iterations_ = 0;
   }
 
@@ -62,7 +62,7 @@ class Reporter {
   dds::HealthReporter* health_;
   const std::function<void(const std::string&)>& log_status_;
   SteadyClock::time_point last_ = SteadyClock::now();
-  time::Timestamp last_sim_ = sim_.snapshot().time;
+  time::Timestamp last_sim_ = sim_.time();
   std::uint64_t iterations_ = 0;
 };
 

@@ -88,7 +88,7 @@ struct OpenSpaceParams {
 /// Stay goal-side of opponent robot `opponent`, `distance` from it on its line to our goal.
 struct ManMarkParams {
   std::uint32_t opponent = 0;
-  double distance = 0.35;             // m, centre to centre
+  double distance = 0.3;              // m, centre to centre
 };
 /// The possessor `opponent`: while it faces our goal (within `facing_limit`), stand in its mouth (in front
 /// of its kicker); once it turns further away, block its line of sight to our goal instead.

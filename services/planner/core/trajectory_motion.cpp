@@ -208,12 +208,13 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   const TrajectoryPath& path = memory.planned->path;
   Vec2 velocity = path.velocity(dt);
   if (intent.target_velocity.squaredNorm() > 0 && (target - start).norm() < kFollowDistance) {
-    // Near a moving target: plan to rest in the target's frame and add its velocity, so that the robot
-    // keeps up with it instead of braking for where it is now (the contact guard keeps it off robots).
-    const Vec2& vt = intent.target_velocity;
-    const TrajectoryLimits relative{.max_speed = std::max(0.5, limits.max_speed - std::min(vt.norm(), limits.max_speed)),
-                                    .max_acceleration = limits.max_acceleration};
-    velocity = Trajectory2D::plan(start, memory.velocity - vt, target, relative).velocity(dt) + vt;
+    // Near a moving target: move with it, plus a correction towards it proportional to the distance (capped
+    // so that the robot can still brake it away). A time-optimal plan to rest in the target's frame brakes
+    // at the limit and overshoots as soon as the target brakes or turns (it counts on a steady target).
+    const Vec2 error = target - start;
+    const double correction = std::min(params_.follow_gain * error.norm(),
+                                       std::sqrt(limits.max_acceleration * error.norm()));
+    velocity = intent.target_velocity + geom::normalized_or_zero(error) * correction;
     if (velocity.norm() > limits.max_speed) velocity *= limits.max_speed / velocity.norm();
   }
   if ((target - robot.position).norm() < kArrived && velocity.norm() < 0.05) velocity = Vec2::Zero();

@@ -33,6 +33,7 @@ struct TrajectoryMotionParams {
   double our_margin = 0.03;            // m between two of our robots
   double their_margin = 0.05;          // m between us and an opponent
   double robot_prediction = 0.5;       // s a robot's measured velocity is extrapolated; then it stands
+  double follow_gain = 3.0;            // 1/s: near a moving target, m/s of correction per m of distance
   // The contact guard, last before the command goes out: towards any robot, our speed may not exceed what
   // still stops us (after guard_latency at guard_deceleration) within half the gap that is left
   // guard_margin short of touching it, plus the way it goes on if, moving away, it brakes at
@@ -42,7 +43,11 @@ struct TrajectoryMotionParams {
   double guard_margin = 0.03;          // m beyond two radii
   double guard_latency = 0.06;         // s until a command acts (vision delay, pipeline, one tick)
   double guard_deceleration = 3.0;     // m/s^2 the guard counts on (below the robots' limit)
-  double guard_other_braking = 4.0;    // m/s^2: the hardest a robot ahead of us may brake
+  // m/s^2 a robot ahead of us is counted on to brake at most: as hard as ours brake. One braking harder
+  // can touch a robot of ours following it, at a closing speed far below the crash rule's 1.5 m/s; counting
+  // on more keeps a follower too far back to mark a robot running away (at 2 m/s a follower needs 0.45 m
+  // centre to centre with 3 m/s^2, 0.78 m with 4).
+  double guard_other_braking = 3.0;
   // Sub-destinations per ring and tick; successive ticks turn the rings by half the spacing, so that two
   // ticks try twice as many directions (last tick's best is always tried again).
   PathSearchParams search = {.directions = 8};

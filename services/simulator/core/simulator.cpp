@@ -203,6 +203,8 @@ std::vector<RobotFeedback> Simulator::feedback(TeamColor team) const {
   return feedback;
 }
 
+time::Timestamp Simulator::time() const { return physics_->time() + time_offset_; }
+
 WorldSnapshot Simulator::snapshot() const {
   WorldSnapshot world = physics_->snapshot();
   world.time += time_offset_;

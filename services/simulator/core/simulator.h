@@ -101,6 +101,8 @@ class Simulator {
   std::vector<RobotFeedback> feedback(TeamColor team) const;
   /// The world now; time on the simulated clock (continuous across field rebuilds).
   WorldSnapshot snapshot() const;
+  /// The simulated clock alone (snapshot().time without building the snapshot).
+  time::Timestamp time() const;
   const GeometryData& geometry() const { return vision_->geometry(); }
   const SimulatorOptions& options() const { return options_; }
   double simulation_speed() const { return simulation_speed_; }

@@ -225,7 +225,7 @@ void CameraAlignment::pair(std::uint32_t a, std::uint32_t b, const Vec2& pa, con
   }
   const Eigen::Matrix<double, kStates, 2> gain = pht * s_inv;
   x_ += gain * y;
-  p_.noalias() -= gain * pht.transpose();
+  p_.noalias() -= gain.lazyProduct(pht.transpose());  // rank 2: coefficient-wise, not a blocked gemm
   ++counters_.pairs_accepted;
   // The update keeps P symmetric up to rounding; restoring it exactly now and then is enough (a full
   // 32 x 32 pass per pair was a tenth of a whole lockstep match's time).

@@ -79,13 +79,14 @@ class SimHarness {
   explicit SimHarness(const HarnessOptions& options, const WorldModelConfig& config = {})
       : sim_(make_options(options)), model_(config) {
     model_.on_geometry(from_sim(sim_.geometry()));
-    truth_[sim_.snapshot().time.nanoseconds()] = sim_.snapshot();
+    const sim::WorldSnapshot first = sim_.snapshot();
+    truth_[first.time.nanoseconds()] = first;
   }
 
   sim::Simulator& sim() { return sim_; }
   WorldModel& model() { return model_; }
   const WorldModel& model() const { return model_; }
-  time::Timestamp now() const { return sim_.snapshot().time; }
+  time::Timestamp now() const { return sim_.time(); }
 
   /// The true world at a capture instant (the latest snapshot at or before t; kept for kTruthKept).
   const sim::WorldSnapshot& truth(time::Timestamp t) const {

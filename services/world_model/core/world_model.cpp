@@ -60,6 +60,7 @@ void WorldModel::on_detection(const DetectionFrame& frame, time::Timestamp now) 
 
   update_robots(TeamColor::kBlue, frame.camera_id, frame.robots_blue, t);
   update_robots(TeamColor::kYellow, frame.camera_id, frame.robots_yellow, t);
+  predict_dribblers(t);
   update_ball(frame.camera_id, frame.balls, t);
   update_possession(t);
   drop_lost_tracks(t);
@@ -189,7 +190,7 @@ void WorldModel::update_ball(std::uint32_t camera_id, std::span<const BallDetect
     }
   }
   const BallFilter::UpdateResult result = ball_.update(best->position, t, near_robot);
-  if (result != BallFilter::UpdateResult::kOutlier) carrier_ = dribbler_touching(best->position, t);
+  if (result != BallFilter::UpdateResult::kOutlier) carrier_ = dribbler_touching(best->position);
   switch (result) {
     case BallFilter::UpdateResult::kInitialised:
     case BallFilter::UpdateResult::kFused: break;
@@ -202,14 +203,23 @@ void WorldModel::update_ball(std::uint32_t camera_id, std::span<const BallDetect
   }
 }
 
-std::optional<WorldModel::RobotKey> WorldModel::dribbler_touching(const Vec2& ball, time::Timestamp t) const {
+void WorldModel::predict_dribblers(time::Timestamp t) {
+  for (std::size_t team = 0; team < tracks_.size(); ++team) {
+    for (std::uint32_t id = 0; id < kMaxRobotsPerTeam; ++id) {
+      const Track& track = tracks_[team][id];
+      dribblers_[team][id] = track ? std::optional<Vec2>(dribbler_point(track->predict_state(t))) : std::nullopt;
+    }
+  }
+}
+
+std::optional<WorldModel::RobotKey> WorldModel::dribbler_touching(const Vec2& ball) const {
   std::optional<RobotKey> touching;
   double best = config_.possession_distance;
   for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
-    const TeamTracks& team_tracks = tracks(team);
     for (std::uint32_t id = 0; id < kMaxRobotsPerTeam; ++id) {
-      if (!team_tracks[id]) continue;
-      const double gap = (dribbler_point(team_tracks[id]->predict_state(t)) - ball).norm();
+      const std::optional<Vec2>& dribbler = dribblers_[team_index(team)][id];
+      if (!dribbler) continue;
+      const double gap = (*dribbler - ball).norm();
       if (gap <= best) {
         best = gap;
         touching = RobotKey{team, id};
@@ -301,12 +311,11 @@ void WorldModel::update_possession(time::Timestamp t) {
   std::optional<std::uint32_t> friendly, enemy;
   double best_friendly = config_.possession_distance, best_enemy = config_.possession_distance;
   for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
-    const TeamTracks& team_tracks = tracks(team);
     for (std::uint32_t id = 0; id < kMaxRobotsPerTeam; ++id) {
-      if (!team_tracks[id]) continue;
-      const RobotFilter::State x = team_tracks[id]->predict_state(t);
+      const std::optional<Vec2>& dribbler = dribblers_[team_index(team)][id];
+      if (!dribbler) continue;
       // Ball surface to the dribbler's front point (dribbler_point is where the ball centre sits).
-      const double gap = (dribbler_point(x) - ball).norm();
+      const double gap = (*dribbler - ball).norm();
       const bool ours = team == config_.team;
       double& best = ours ? best_friendly : best_enemy;
       if (gap <= best) {

@@ -136,8 +136,11 @@ class WorldModel {
     TeamColor team = TeamColor::kBlue;
     std::uint32_t id = 0;
   };
-  /// The robot (either team) whose dribbler the ball at `ball` touches at t, if any.
-  std::optional<RobotKey> dribbler_touching(const Vec2& ball, time::Timestamp t) const;
+  /// Every robot's dribbler point at the frame's capture instant t, once its robots are updated: the
+  /// frame's ball checks below share them.
+  void predict_dribblers(time::Timestamp t);
+  /// The robot (either team) whose dribbler the ball at `ball` touches, if any (predict_dribblers first).
+  std::optional<RobotKey> dribbler_touching(const Vec2& ball) const;
   void start_chip_tracking();
   /// Feeds a ball detection to the chip reconstruction; true while the ball is airborne (the ground
   /// filter must not take it), false otherwise.
@@ -163,6 +166,7 @@ class WorldModel {
   TeamFrame frame_;
   GameState game_;
   std::array<TeamTracks, 2> tracks_;  // blue, yellow
+  std::array<std::array<std::optional<Vec2>, kMaxRobotsPerTeam>, 2> dribblers_;  // see predict_dribblers
   BallFilter ball_;
   CameraAlignment alignment_;
   ChipTrack chip_;
