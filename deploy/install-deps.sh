@@ -13,12 +13,16 @@ packages=(
   # libraries
   libeigen3-dev libbullet-dev libspdlog-dev libcli11-dev libyaml-cpp-dev nlohmann-json3-dev
   libcpp-httplib-dev zlib1g-dev
+  # systemd integration (sd_notify), unit checks and the Debian package
+  libsystemd-dev systemd dpkg-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing and sanitizers (clang build)
   clang libclang-rt-14-dev
   # process and network tests
   iproute2 procps python3
+  # multi-host tests: network namespaces joined by a bridge, multicast filtered on it
+  nftables
 )
 
 missing=()

@@ -323,8 +323,9 @@ Error Context::to_error() const {
 
 std::string Context::where(const Node* at) const {
   if (at != nullptr && !at->origin.empty()) return source_ + " (" + at->origin + ")";
-  if (at != nullptr && at->line > 0) return source_ + ":" + std::to_string(at->line);
-  return source_;
+  const std::string& file = at != nullptr && !at->file.empty() ? at->file : source_;
+  if (at != nullptr && at->line > 0) return file + ":" + std::to_string(at->line);
+  return file;
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -417,6 +418,37 @@ Result<std::string> read_file(const std::string& path) {
   while ((read = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, read);
   if (std::ferror(file.get())) return Error{"cannot read config file '" + path + "': " + errno_text(errno)};
   return text;
+}
+
+namespace {
+
+void set_file(Node& node, const std::string& file) {
+  node.file = file;
+  for (Node& item : node.items) set_file(item, file);
+  for (auto& [key, value] : node.entries) set_file(value, file);
+}
+
+void merge_nodes(Node& base, Node overlay) {
+  if (base.kind != Node::Kind::kMap || overlay.kind != Node::Kind::kMap) {
+    base = std::move(overlay);
+    return;
+  }
+  for (MapEntry& entry : overlay.entries) {
+    auto below = std::find_if(base.entries.begin(), base.entries.end(),
+                              [&](const MapEntry& candidate) { return candidate.key == entry.key; });
+    if (below == base.entries.end()) {
+      base.entries.push_back(std::move(entry));
+    } else {
+      merge_nodes(below->value, std::move(entry.value));
+    }
+  }
+}
+
+}  // namespace
+
+void merge_layer(Node& base, Node overlay, const std::string& file) {
+  set_file(overlay, file);
+  merge_nodes(base, std::move(overlay));
 }
 
 Status apply_override(Node& root, std::string_view assignment, std::string_view source) {

@@ -307,6 +307,14 @@ template <typename T>
 Result<T> load_file(const std::string& path, const Fields<T>& fields,
                     std::span<const std::string> overrides = {});
 
+/// Loads layered files, lowest first: `paths[0]` is complete (the defaults); each later file holds only
+/// the keys it changes (a site, a user's file) and is laid over the ones below (maps merge key by key, any
+/// other value replaces the one below whole). Then `overrides`, then the same validation as load_string:
+/// an unknown key or a bad value is reported at its own file and line.
+template <typename T>
+Result<T> load_files(std::span<const std::string> paths, const Fields<T>& fields,
+                     std::span<const std::string> overrides = {});
+
 /// The effective config as YAML, in schema order, with units and docs as comments. Loading the output
 /// with the same fields gives back an equal struct (doubles are printed with round-trip precision).
 template <typename T>
@@ -762,6 +770,36 @@ Result<T> load_file(const std::string& path, const Fields<T>& fields,
   Result<std::string> text = detail::read_file(path);
   if (!text) return text.error();
   return load_string(*text, fields, path, overrides);
+}
+
+template <typename T>
+Result<T> load_files(std::span<const std::string> paths, const Fields<T>& fields,
+                     std::span<const std::string> overrides) {
+  if (paths.empty()) return Error{"no config file given"};
+  detail::Context context{paths.front()};
+  detail::check_record_schema(fields, context, "");
+  if (context.error_count() != 0) return context.to_error();
+
+  Result<std::string> text = detail::read_file(paths.front());
+  if (!text) return text.error();
+  Result<detail::Node> root = detail::parse_yaml(*text, paths.front());
+  if (!root) return root.error();
+  for (const std::string& path : paths.subspan(1)) {
+    Result<std::string> layer_text = detail::read_file(path);
+    if (!layer_text) return layer_text.error();
+    Result<detail::Node> layer = detail::parse_yaml(*layer_text, path);
+    if (!layer) return layer.error();
+    detail::merge_layer(*root, std::move(*layer), path);
+  }
+  for (const std::string& assignment : overrides) {
+    if (Status applied = detail::apply_override(*root, assignment, paths.front()); !applied) {
+      return applied.error();
+    }
+  }
+  T value{};
+  detail::load_record(&*root, value, fields, context, "");
+  if (context.error_count() != 0) return context.to_error();
+  return value;
 }
 
 template <typename T>

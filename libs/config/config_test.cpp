@@ -346,6 +346,65 @@ TEST_F(ConfigFileTest, UnreadableFileIsReportedWithTheReason) {
   EXPECT_EQ(directory.error().message, "cannot read config file '" + dir_.string() + "': Is a directory");
 }
 
+TEST_F(ConfigFileTest, ALayerGivesOnlyTheKeysItChanges) {
+  const std::string defaults = write("sim.yaml", kValidYaml);
+  const std::string site = write("site.yaml", "physics:\n  friction: 0.5\nport: 10020\n");
+  const std::string user = write("user.yaml", "# only one key\nport: 10400\n");
+  const std::vector<std::string> layers{defaults, site, user};
+  Result<SimConfig> loaded = load_files(layers, sim_fields());
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  EXPECT_EQ(loaded->port, 10400);                       // the user's file wins over the site
+  EXPECT_DOUBLE_EQ(loaded->physics.friction, 0.5);      // the site's key, merged into the map
+  EXPECT_DOUBLE_EQ(loaded->physics.ball_radius_m, 0.0215);  // its sibling from the defaults
+  EXPECT_EQ(loaded->robots_per_team, 11);
+
+  const std::vector<std::string> overridden{defaults, user};
+  const std::vector<std::string> set{"port=10500"};
+  EXPECT_EQ(load_files(overridden, sim_fields(), set)->port, 10500);  // --set wins over every file
+}
+
+TEST_F(ConfigFileTest, ALayerReplacesListsWhole) {
+  const std::string defaults = write("sim.yaml", kValidYaml);
+  const std::string layer = write("layer.yaml", "gains: [3, 4]\nrobots:\n  - id: 5\n");
+  const std::vector<std::string> layers{defaults, layer};
+  Result<SimConfig> loaded = load_files(layers, sim_fields());
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  EXPECT_EQ(loaded->gains, (std::vector<double>{3, 4}));
+  ASSERT_EQ(loaded->robots.size(), 1u);
+  EXPECT_EQ(loaded->robots[0].id, 5);
+}
+
+TEST_F(ConfigFileTest, ALayersMistakesAreReportedAtItsOwnFileAndLine) {
+  const std::string defaults = write("sim.yaml", kValidYaml);
+  const std::string layer = write("layer.yaml", "port: 10020\nphysics:\n  bal_radius: 0.03\nrealism: maybe\n");
+  const std::vector<std::string> layers{defaults, layer};
+  Result<SimConfig> loaded = load_files(layers, sim_fields());
+  ASSERT_FALSE(loaded);
+  EXPECT_THAT(loaded.error().message,
+              HasSubstr(layer + ":3: unknown key 'physics.bal_radius' (did you mean 'ball_radius'?)"));
+  EXPECT_THAT(loaded.error().message, HasSubstr(layer + ":4: key 'realism': expected true or false"));
+
+  const std::string broken = write("broken.yaml", "port: [10020\n");
+  const std::vector<std::string> with_broken{defaults, broken};
+  Result<SimConfig> syntax = load_files(with_broken, sim_fields());
+  ASSERT_FALSE(syntax);
+  EXPECT_THAT(syntax.error().message, HasSubstr(broken + ":"));
+  EXPECT_THAT(syntax.error().message, HasSubstr("YAML syntax error"));
+
+  const std::vector<std::string> with_missing{defaults, (dir_ / "missing.yaml").string()};
+  Result<SimConfig> missing = load_files(with_missing, sim_fields());
+  ASSERT_FALSE(missing);
+  EXPECT_THAT(missing.error().message, HasSubstr("cannot read config file"));
+}
+
+TEST_F(ConfigFileTest, OnlyTheLowestLayerMustBeComplete) {
+  // A file with one key is a fine layer, and not a complete config by itself.
+  const std::string one_key = write("one.yaml", "port: 10400\n");
+  Result<SimConfig> alone = load_file(one_key, sim_fields());
+  ASSERT_FALSE(alone);
+  EXPECT_THAT(alone.error().message, HasSubstr(one_key + ": missing required key 'robots_per_team'"));
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // to_yaml, describe
 

@@ -30,6 +30,7 @@ struct Node {
   std::vector<Node> items;  ///< kSequence
   std::vector<MapEntry> entries;  ///< kMap, in document order
   int line = 0;                   ///< 1-based line in the source; 0 when unknown
+  std::string file;               ///< non-empty for values from a layer over the source (load_files)
   std::string origin;             ///< non-empty for values from an override: "override 'a.b=1'"
   std::string comment;            ///< only for to_yaml: emitted as "# comment" after the value
 
@@ -109,6 +110,10 @@ Result<std::string> read_file(const std::string& path);
 /// addressed as "robots[1].id". Missing intermediate maps are created; type and unknown-key errors are
 /// found later by the normal validation, which names the override.
 Status apply_override(Node& root, std::string_view assignment, std::string_view source);
+
+/// Lays `overlay` (parsed from `file`) over `base`: a map's keys merge key by key, recursively; any other
+/// value (scalar, list, null) replaces the one below whole. The overlay's nodes remember `file`.
+void merge_layer(Node& base, Node overlay, const std::string& file);
 
 /// YAML text for a Node tree (block style; lists of scalars in flow style; comments after values).
 std::string emit_yaml(const Node& root);

@@ -1,5 +1,7 @@
 #include "libs/dds/health.h"
 
+#include "libs/common/service_manager.h"
+
 #include <unistd.h>
 
 #include <chrono>
@@ -54,7 +56,15 @@ Status HealthReporter::publish(const HealthReport& report) {
   const std::int64_t now = wall_clock_unix_ns();
   sample.uptime_ns(now - start_unix_ns_);
   sample.stamp_unix_ns(now);
-  return writer_.write(sample);
+  Status written = writer_.write(sample);
+  // The service manager hears the same: up once the loop reports, alive while it keeps reporting.
+  if (!ready_sent_) {
+    service_manager::ready(report.status);
+    ready_sent_ = true;
+  } else {
+    service_manager::alive(report.status);
+  }
+  return written;
 }
 
 }  // namespace ssl::dds

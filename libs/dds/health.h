@@ -1,5 +1,7 @@
 // HealthReporter: publishes one service instance's system.health sample (rate, latency, errors, dropped
-// inputs and named counters). Services call publish() about once per second from their own loop.
+// inputs and named counters). Services call publish() about once per second from their own loop; each
+// report also tells the service manager (libs/common/service_manager.h): READY=1 with the first, the
+// watchdog's WATCHDOG=1 with every later one.
 //
 //   ssl::dds::HealthReporter health(participant, "simulator");
 //   health.publish({.level = HealthLevel::kOk, .status = "running", .rate_hz = 500,
@@ -44,6 +46,7 @@ class HealthReporter {
   std::string service_;
   std::string host_;
   std::int64_t start_unix_ns_ = 0;
+  bool ready_sent_ = false;  // READY=1 went to the service manager (with the first report)
 };
 
 }  // namespace ssl::dds

@@ -4,6 +4,10 @@
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -160,6 +164,46 @@ Result<fdds::Topic*> find_or_create_topic(detail::ParticipantState& state, std::
   return topic;
 }
 
+// The site's discovery on top of the profile's participant QoS (libs/dds/discovery.h).
+Status apply_discovery(const DiscoveryConfig& discovery, fdds::DomainParticipantQos& qos) {
+  auto& builtin = qos.wire_protocol().builtin;
+  switch (discovery.mode) {
+    case DiscoveryMode::kMulticast: return Status::success();
+    case DiscoveryMode::kServer: {
+      // Fast DDS's own parser of "host:port;host:port" gives the i-th server the GUID prefix of
+      // `fastdds discovery -i i`.
+      std::string list;
+      for (const std::string& server : discovery.servers) list += (list.empty() ? "" : ";") + server;
+      eprosima::fastdds::rtps::RemoteServerList_t servers;
+      if (!eprosima::fastdds::rtps::load_environment_server_info(list, servers)) {
+        return Error{"cannot use the discovery servers '" + list + "'"};
+      }
+      builtin.discovery_config.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::CLIENT;
+      builtin.discovery_config.m_DiscoveryServers = servers;
+      return Status::success();
+    }
+    case DiscoveryMode::kPeers: {
+      for (const std::string& peer : discovery.peers) {
+        eprosima::fastrtps::rtps::Locator_t locator;
+        if (!eprosima::fastrtps::rtps::IPLocator::setIPv4(locator, peer)) {
+          return Error{"discovery peer '" + peer + "' is not an IPv4 address"};
+        }
+        builtin.initialPeersList.push_back(locator);
+      }
+      // A peer without a port is tried on the well-known ports of its first maxInitialPeersRange
+      // participants (4 by default; a field PC runs more): our own UDP transport, beside shared memory.
+      auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+      udp->maxInitialPeersRange = discovery.peer_participants;
+      qos.transport().use_builtin_transports = false;
+      qos.transport().user_transports.push_back(
+          std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+      qos.transport().user_transports.push_back(udp);
+      return Status::success();
+    }
+  }
+  return Error{"unknown discovery mode"};
+}
+
 }  // namespace
 
 Result<std::string> find_qos_file() {
@@ -188,6 +232,7 @@ Result<Participant> Participant::create(const ParticipantOptions& options) {
     return Error{"QoS profiles file '" + qos_file + "' has no participant profile 'ssl.participant'"};
   }
   qos.name(options.name);
+  if (Status applied = apply_discovery(options.discovery, qos); !applied) return applied.error();
   auto state = std::make_shared<detail::ParticipantState>();
   state->domain_id = options.domain_id;
   state->qos_file = qos_file;

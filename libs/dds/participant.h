@@ -20,6 +20,7 @@
 
 #include "libs/common/result.h"
 #include "libs/common/team.h"
+#include "libs/dds/discovery.h"
 #include "libs/dds/reader.h"
 #include "libs/dds/topics.h"
 #include "libs/dds/writer.h"
@@ -30,6 +31,7 @@ struct ParticipantOptions {
   int domain_id = 0;        // DDS domain id, 0..232
   std::string qos_file;     // Fast DDS XML profiles; empty: find_qos_file()
   std::string name = "ssl"; // participant name shown to discovery tools, e.g. "world_model/blue"
+  DiscoveryConfig discovery;  // how it finds the others (the site's deploy/.../dds.yaml)
 };
 
 /// Finds deploy/qos/profiles.xml: $SSL_QOS_FILE, else as ssl::find_deploy_file does.

@@ -6,7 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "libs/common/deploy_files.h"
+#include "libs/service/setup.h"
 #include "libs/common/shutdown.h"
 #include "libs/dds/participant.h"
 #include "libs/time/clock.h"
@@ -17,6 +17,7 @@ namespace {
 
 struct Flags {
   std::string config_file;
+  std::string site;
   int domain = 0;
   std::string interface_address;
   std::string log_level = "info";
@@ -34,7 +35,8 @@ int main(int argc, char** argv) {
   ssl::ShutdownSignal shutdown;  // before any thread exists
   Flags flags;
   CLI::App app{"planner: one team's behaviour tree, world.state + referee.state -> robot.commands", "planner"};
-  app.add_option("--config", flags.config_file, "YAML config (default deploy/config/planner.yaml)");
+  app.add_option("--config", flags.config_file, "YAML file laid over the defaults and the site (only the keys it changes)");
+  app.add_option("--site", flags.site, ssl::service::kSiteHelp);
   app.add_option("--domain", flags.domain, "DDS domain id")->check(CLI::Range(0, 232));
   app.add_option("--interface", flags.interface_address,
                  "multicast interface address (accepted for uniformity; the planner uses DDS only)");
@@ -67,15 +69,12 @@ int main(int argc, char** argv) {
     std::cout << ssl::planner::planner_config_help();
     return 0;
   }
-  if (flags.config_file.empty()) {
-    auto found = ssl::find_deploy_file("config/planner.yaml");
-    if (!found) {
-      logger->critical("{}", found.error().message);
-      return 1;
-    }
-    flags.config_file = *found;
+  auto setup = ssl::service::prepare("planner", flags.site, flags.config_file);
+  if (!setup) {
+    logger->critical("{}", setup.error().message);
+    return 1;
   }
-  auto config = ssl::planner::load_planner_config(flags.config_file, flags.set_overrides);
+  auto config = ssl::planner::load_planner_config(setup->config_files, flags.set_overrides);
   if (!config) {
     logger->critical("{}", config.error().message);
     return 1;
@@ -91,7 +90,8 @@ int main(int argc, char** argv) {
   }
 
   const std::string team(ssl::to_string(config->team));
-  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "planner/" + team});
+  logger->info("{}", ssl::service::describe(*setup));
+  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "planner/" + team, .discovery = setup->discovery});
   if (!participant) {
     logger->critical("{}", participant.error().message);
     return 1;

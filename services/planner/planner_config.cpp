@@ -71,14 +71,18 @@ Fields<PlannerServiceConfig> service_fields() {
 
 wm::FieldSize division_field(Division division) { return FieldGeometry::of(division); }
 
-Result<PlannerServiceConfig> load_planner_config(const std::string& path, const std::vector<std::string>& overrides) {
-  auto loaded = config::load_file(path, service_fields(), overrides);
+Result<PlannerServiceConfig> load_planner_config(std::span<const std::string> files, const std::vector<std::string>& overrides) {
+  auto loaded = config::load_files(files, service_fields(), overrides);
   if (!loaded) return loaded;
   PlannerServiceConfig& c = *loaded;
   c.core.team = c.team;
   c.core.tick_period = 1.0 / (c.tick_mode == TickMode::kFixedRate ? c.tick_rate : c.max_rate);
   c.core.default_field = division_field(c.default_division);
   return loaded;
+}
+
+Result<PlannerServiceConfig> load_planner_config(const std::string& path, const std::vector<std::string>& overrides) {
+  return load_planner_config(std::span<const std::string>(&path, 1), overrides);
 }
 
 std::string planner_config_yaml(const PlannerServiceConfig& config) {

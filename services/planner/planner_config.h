@@ -3,6 +3,7 @@
 #pragma once
 
 #include "libs/domain/division.h"
+#include <span>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,9 @@ struct PlannerServiceConfig {
 /// The rulebook's field of a division (metres).
 wm::FieldSize division_field(Division division);
 
+/// `files`: the config's layers, lowest first (ssl::config_layers: defaults, site, --config).
+Result<PlannerServiceConfig> load_planner_config(std::span<const std::string> files, const std::vector<std::string>& overrides);
+/// One complete file.
 Result<PlannerServiceConfig> load_planner_config(const std::string& path, const std::vector<std::string>& overrides);
 std::string planner_config_yaml(const PlannerServiceConfig& config);
 /// Every key with its type, unit, limits and documentation (for --help-config).

@@ -15,7 +15,7 @@
 #include <memory>
 #include <optional>
 
-#include "libs/common/deploy_files.h"
+#include "libs/service/setup.h"
 #include "libs/common/shutdown.h"
 #include "libs/dds/participant.h"
 #include "libs/time/clock.h"
@@ -28,6 +28,7 @@ namespace {
 
 struct Flags {
   std::string config_file;
+  std::string site;
   int domain = 0;
   std::string log_level = "info";
   std::string profile;
@@ -51,7 +52,8 @@ int main(int argc, char** argv) {
       "referee_gateway: SSL Game Controller (or our built-in referee's) packets -> referee.state and "
       "referee.event (DDS)",
       "referee_gateway"};
-  app.add_option("--config", flags.config_file, "YAML config (default deploy/config/referee_gateway.yaml)");
+  app.add_option("--config", flags.config_file, "YAML file laid over the defaults and the site (only the keys it changes)");
+  app.add_option("--site", flags.site, ssl::service::kSiteHelp);
   app.add_option("--domain", flags.domain, "DDS domain id")->check(CLI::Range(0, 232));
   app.add_option("--log-level", flags.log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
@@ -77,15 +79,12 @@ int main(int argc, char** argv) {
   logger->set_level(spdlog::level::from_str(flags.log_level));
   logger->flush_on(spdlog::level::trace);  // every line at once, also into a pipe or the journal (low rate)
 
-  if (flags.config_file.empty()) {
-    auto found = ssl::find_deploy_file("config/referee_gateway.yaml");
-    if (!found) {
-      logger->critical("{}", found.error().message);
-      return 1;
-    }
-    flags.config_file = *found;
+  auto setup = ssl::service::prepare("referee_gateway", flags.site, flags.config_file);
+  if (!setup) {
+    logger->critical("{}", setup.error().message);
+    return 1;
   }
-  auto config = ssl::referee::load_referee_gateway_config(flags.config_file, flags.overrides);
+  auto config = ssl::referee::load_referee_gateway_config(setup->config_files, flags.overrides);
   if (!config) {
     logger->critical("{}", config.error().message);
     return 1;
@@ -110,7 +109,8 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "referee_gateway"});
+  logger->info("{}", ssl::service::describe(*setup));
+  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "referee_gateway", .discovery = setup->discovery});
   if (!participant) {
     logger->critical("{}", participant.error().message);
     return 1;

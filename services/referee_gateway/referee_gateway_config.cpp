@@ -78,9 +78,12 @@ Fields<RefereeGatewayConfig> gateway_fields() {
 
 }  // namespace
 
-Result<RefereeGatewayConfig> load_referee_gateway_config(const std::string& path,
-                                                         const std::vector<std::string>& overrides) {
-  return config::load_file(path, gateway_fields(), overrides);
+Result<RefereeGatewayConfig> load_referee_gateway_config(std::span<const std::string> files, const std::vector<std::string>& overrides) {
+  return config::load_files(files, gateway_fields(), overrides);
+}
+
+Result<RefereeGatewayConfig> load_referee_gateway_config(const std::string& path, const std::vector<std::string>& overrides) {
+  return load_referee_gateway_config(std::span<const std::string>(&path, 1), overrides);
 }
 
 std::string referee_gateway_config_yaml(const RefereeGatewayConfig& config) {

@@ -8,6 +8,7 @@
 //   RefereeIngest ingest(gateway_options(*config));
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -56,8 +57,10 @@ struct RefereeGatewayConfig {
 };
 
 /// Loads and validates a config file; `overrides` are "key.path=value" strings (from flags).
-Result<RefereeGatewayConfig> load_referee_gateway_config(const std::string& path,
-                                                         const std::vector<std::string>& overrides);
+/// `files`: the config's layers, lowest first (ssl::config_layers: defaults, site, --config).
+Result<RefereeGatewayConfig> load_referee_gateway_config(std::span<const std::string> files, const std::vector<std::string>& overrides);
+/// One complete file.
+Result<RefereeGatewayConfig> load_referee_gateway_config(const std::string& path, const std::vector<std::string>& overrides);
 
 /// The effective config as YAML (for --print-config).
 std::string referee_gateway_config_yaml(const RefereeGatewayConfig& config);

@@ -6,7 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "libs/common/deploy_files.h"
+#include "libs/service/setup.h"
 #include "libs/common/shutdown.h"
 #include "services/robot_link/adapter/service.h"
 
@@ -14,6 +14,7 @@ namespace {
 
 struct Flags {
   std::string config_file;
+  std::string site;
   int domain = 0;
   std::string log_level = "info";
   bool print_config = false;
@@ -36,7 +37,8 @@ int main(int argc, char** argv) {
       "robot_link: one team's robot commands to the simulator or the radio, with watchdog, HALT, "
       "latched e-stop and limits",
       "robot_link"};
-  app.add_option("--config", flags.config_file, "YAML config (default deploy/config/robot_link.yaml)");
+  app.add_option("--config", flags.config_file, "YAML file laid over the defaults and the site (only the keys it changes)");
+  app.add_option("--site", flags.site, ssl::service::kSiteHelp);
   app.add_option("--domain", flags.domain, "DDS domain id")->check(CLI::Range(0, 232));
   app.add_option("--log-level", flags.log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
@@ -65,15 +67,12 @@ int main(int argc, char** argv) {
   auto logger = spdlog::default_logger()->clone("robot_link");
   logger->set_level(spdlog::level::from_str(flags.log_level));
 
-  if (flags.config_file.empty()) {
-    auto found = ssl::find_deploy_file("config/robot_link.yaml");
-    if (!found) {
-      logger->critical("{}", found.error().message);
-      return 1;
-    }
-    flags.config_file = *found;
+  auto setup = ssl::service::prepare("robot_link", flags.site, flags.config_file);
+  if (!setup) {
+    logger->critical("{}", setup.error().message);
+    return 1;
   }
-  auto config = ssl::robot_link::load_robot_link_config(flags.config_file, flags.overrides);
+  auto config = ssl::robot_link::load_robot_link_config(setup->config_files, flags.overrides);
   if (!config) {
     logger->critical("{}", config.error().message);
     return 1;
@@ -88,8 +87,9 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  logger->info("{}", ssl::service::describe(*setup));
   ssl::Status ran = ssl::robot_link::run_robot_link(
-      {.config = *config, .team = *team, .domain_id = flags.domain}, shutdown, logger);
+      {.config = *config, .team = *team, .domain_id = flags.domain, .discovery = setup->discovery}, shutdown, logger);
   if (!ran) {
     logger->critical("{}", ran.error().message);
     return 1;

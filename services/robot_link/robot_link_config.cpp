@@ -108,9 +108,12 @@ time::Duration seconds(double value) { return time::duration_from_seconds(value)
 
 }  // namespace
 
-Result<RobotLinkConfig> load_robot_link_config(const std::string& path,
-                                               const std::vector<std::string>& overrides) {
-  return config::load_file(path, robot_link_fields(), overrides);
+Result<RobotLinkConfig> load_robot_link_config(std::span<const std::string> files, const std::vector<std::string>& overrides) {
+  return config::load_files(files, robot_link_fields(), overrides);
+}
+
+Result<RobotLinkConfig> load_robot_link_config(const std::string& path, const std::vector<std::string>& overrides) {
+  return load_robot_link_config(std::span<const std::string>(&path, 1), overrides);
 }
 
 std::string robot_link_config_yaml(const RobotLinkConfig& config) {

@@ -4,6 +4,7 @@
 // Units: seconds, Hz, m/s, rad/s, m/s^2, rad/s^2, rpm, as stated per key in the schema.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -47,8 +48,10 @@ struct RobotLinkConfig {
 };
 
 /// Loads and validates a config file; `overrides` are "key.path=value" strings (from flags).
-Result<RobotLinkConfig> load_robot_link_config(const std::string& path,
-                                               const std::vector<std::string>& overrides);
+/// `files`: the config's layers, lowest first (ssl::config_layers: defaults, site, --config).
+Result<RobotLinkConfig> load_robot_link_config(std::span<const std::string> files, const std::vector<std::string>& overrides);
+/// One complete file.
+Result<RobotLinkConfig> load_robot_link_config(const std::string& path, const std::vector<std::string>& overrides);
 
 /// The effective config as YAML (for --print-config).
 std::string robot_link_config_yaml(const RobotLinkConfig& config);

@@ -34,10 +34,21 @@ TEST(RobotLinkConfigTest, DeployedFilesLoad) {
   EXPECT_EQ(core.send_period, std::chrono::milliseconds(10));
   EXPECT_DOUBLE_EQ(core.limits.vel_absolute_max, 3.0);
 
-  auto radio = load_robot_link_config(deployed("robot_link_radio.yaml"), {});
+  // The sites: the simulator's, and the real field's radio on USB serial with our slower robots' limits.
+  auto sim = config_layers("robot_link", "sim", "");
+  ASSERT_TRUE(sim) << sim.error().message;
+  auto simulated = load_robot_link_config(*sim, {});
+  ASSERT_TRUE(simulated) << simulated.error().message;
+  EXPECT_EQ(simulated->backend, BackendKind::kSim);
+
+  auto field = config_layers("robot_link", "field", "");
+  ASSERT_TRUE(field) << field.error().message;
+  auto radio = load_robot_link_config(*field, {});
   ASSERT_TRUE(radio) << radio.error().message;
   EXPECT_EQ(radio->backend, BackendKind::kRadio);
   EXPECT_EQ(radio->radio.transport, RadioTransport::kSerial);
+  EXPECT_DOUBLE_EQ(core_config(*radio).limits.vel_absolute_max, 2.5);
+  EXPECT_DOUBLE_EQ(radio->command_timeout, 0.1) << "the field site changes only what differs";
 }
 
 TEST(RobotLinkConfigTest, FlagOverridesApplyAndAreValidated) {

@@ -6,7 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "libs/common/deploy_files.h"
+#include "libs/service/setup.h"
 #include "libs/common/shutdown.h"
 #include "libs/dds/health.h"
 #include "services/simulator/run_loop.h"
@@ -15,6 +15,7 @@ namespace {
 
 struct Flags {
   std::string config_file;
+  std::string site;
   int domain = 0;
   std::string log_level = "info";
   bool print_config = false;
@@ -36,7 +37,8 @@ int main(int argc, char** argv) {
   Flags flags;
   CLI::App app{"simulator: Bullet physics of an SSL match over the league's simulation protocol and SSL-Vision",
                "simulator"};
-  app.add_option("--config", flags.config_file, "YAML config (default deploy/config/simulator.yaml)");
+  app.add_option("--config", flags.config_file, "YAML file laid over the defaults and the site (only the keys it changes)");
+  app.add_option("--site", flags.site, ssl::service::kSiteHelp);
   app.add_option("--domain", flags.domain, "DDS domain id for system.health")->check(CLI::Range(0, 232));
   app.add_option("--log-level", flags.log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
@@ -65,15 +67,12 @@ int main(int argc, char** argv) {
   logger->set_level(spdlog::level::from_str(flags.log_level));
 
   flags.overrides.insert(flags.overrides.end(), flags.set_overrides.begin(), flags.set_overrides.end());
-  if (flags.config_file.empty()) {
-    auto found = ssl::find_deploy_file("config/simulator.yaml");
-    if (!found) {
-      logger->critical("{}", found.error().message);
-      return 1;
-    }
-    flags.config_file = *found;
+  auto setup = ssl::service::prepare("simulator", flags.site, flags.config_file);
+  if (!setup) {
+    logger->critical("{}", setup.error().message);
+    return 1;
   }
-  auto config = ssl::sim::load_simulator_config(flags.config_file, flags.overrides);
+  auto config = ssl::sim::load_simulator_config(setup->config_files, flags.overrides);
   if (!config) {
     logger->critical("{}", config.error().message);
     return 1;
@@ -93,7 +92,8 @@ int main(int argc, char** argv) {
   std::optional<ssl::dds::Participant> participant;
   std::optional<ssl::dds::HealthReporter> health;
   if (!flags.no_dds) {
-    auto created = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "simulator"});
+    logger->info("{}", ssl::service::describe(*setup));
+    auto created = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "simulator", .discovery = setup->discovery});
     if (!created) {
       logger->critical("{}", created.error().message);
       return 1;

@@ -58,7 +58,7 @@ Fields<RobotSpec> robot_fields() {
 }
 
 Fields<SimulatorConfig> simulator_fields() {
-  return {
+  Fields<SimulatorConfig> fields{
       field("division", &SimulatorConfig::division).values({{"a", Division::kA}, {"b", Division::kB}}),
       field("robots_per_team", &SimulatorConfig::robots_per_team).range(0, 16),
       field("seed", &SimulatorConfig::seed).doc("every random draw (vision noise) derives from it"),
@@ -77,6 +77,15 @@ Fields<SimulatorConfig> simulator_fields() {
       nested("blue", &SimulatorConfig::blue, robot_fields()),
       nested("yellow", &SimulatorConfig::yellow, robot_fields()),
   };
+  fields.check([](const SimulatorConfig& c) -> Status {
+    // The camera grid supports these counts only (VisionConfig::validate would throw later otherwise).
+    const int count = c.cameras.count;
+    if (count != 1 && count != 2 && count != 4 && count != 6 && count != 8) {
+      return Error{"key 'cameras.count': " + std::to_string(count) + " is not one of 1, 2, 4, 6, 8"};
+    }
+    return Status::success();
+  });
+  return fields;
 }
 
 RealismConfig realism_of(RealismProfile profile) {
@@ -90,15 +99,12 @@ RealismConfig realism_of(RealismProfile profile) {
 
 }  // namespace
 
+Result<SimulatorConfig> load_simulator_config(std::span<const std::string> files, const std::vector<std::string>& overrides) {
+  return config::load_files(files, simulator_fields(), overrides);
+}
+
 Result<SimulatorConfig> load_simulator_config(const std::string& path, const std::vector<std::string>& overrides) {
-  auto loaded = config::load_file(path, simulator_fields(), overrides);
-  if (!loaded) return loaded;
-  // The camera grid supports these counts only (VisionConfig::validate would throw later otherwise).
-  const int count = loaded->cameras.count;
-  if (count != 1 && count != 2 && count != 4 && count != 6 && count != 8) {
-    return Error{path + ": key 'cameras.count': " + std::to_string(count) + " is not one of 1, 2, 4, 6, 8"};
-  }
-  return loaded;
+  return load_simulator_config(std::span<const std::string>(&path, 1), overrides);
 }
 
 std::string simulator_config_yaml(const SimulatorConfig& config) { return config::to_yaml(config, simulator_fields()); }

@@ -4,6 +4,7 @@
 
 #include "libs/domain/division.h"
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,9 @@ struct SimulatorConfig {
 };
 
 /// Loads and validates a config file; `overrides` are "key.path=value" strings (from flags).
+/// `files`: the config's layers, lowest first (ssl::config_layers: defaults, site, --config).
+Result<SimulatorConfig> load_simulator_config(std::span<const std::string> files, const std::vector<std::string>& overrides);
+/// One complete file.
 Result<SimulatorConfig> load_simulator_config(const std::string& path, const std::vector<std::string>& overrides);
 
 /// The effective config as YAML (for --print-config).

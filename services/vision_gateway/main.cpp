@@ -1,13 +1,13 @@
 // vision_gateway: receives SSL-Vision (224.5.23.2:10006; simulators :10020) and publishes vision.detection
 // (per camera, metres, capture/sent/receive times) and vision.geometry (transient local) over DDS, plus
-// system.health. Flags override keys of deploy/config/vision_gateway.yaml (the `sim` profile is
-// deploy/config/vision_gateway.sim.yaml).
+// system.health. Config: deploy/config/vision_gateway.yaml, the site's layer (--site sim: port 10020),
+// --config, then the flags.
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "libs/common/deploy_files.h"
+#include "libs/service/setup.h"
 #include "libs/common/shutdown.h"
 #include "libs/dds/participant.h"
 #include "services/vision_gateway/adapter/service.h"
@@ -17,6 +17,7 @@ namespace {
 
 struct Flags {
   std::string config_file;
+  std::string site;
   int domain = 0;
   std::string log_level = "info";
   bool print_config = false;
@@ -38,7 +39,8 @@ int main(int argc, char** argv) {
   Flags flags;
   CLI::App app{"vision_gateway: SSL-Vision multicast -> vision.detection and vision.geometry (DDS, metres)",
                "vision_gateway"};
-  app.add_option("--config", flags.config_file, "YAML config (default deploy/config/vision_gateway.yaml)");
+  app.add_option("--config", flags.config_file, "YAML file laid over the defaults and the site (only the keys it changes)");
+  app.add_option("--site", flags.site, ssl::service::kSiteHelp);
   app.add_option("--domain", flags.domain, "DDS domain id")->check(CLI::Range(0, 232));
   app.add_option("--log-level", flags.log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
@@ -65,15 +67,12 @@ int main(int argc, char** argv) {
     std::cout << ssl::vision_gateway::vision_gateway_config_help();
     return 0;
   }
-  if (flags.config_file.empty()) {
-    auto found = ssl::find_deploy_file("config/vision_gateway.yaml");
-    if (!found) {
-      logger->critical("{}", found.error().message);
-      return 1;
-    }
-    flags.config_file = *found;
+  auto setup = ssl::service::prepare("vision_gateway", flags.site, flags.config_file);
+  if (!setup) {
+    logger->critical("{}", setup.error().message);
+    return 1;
   }
-  auto config = ssl::vision_gateway::load_vision_gateway_config(flags.config_file, flags.overrides);
+  auto config = ssl::vision_gateway::load_vision_gateway_config(setup->config_files, flags.overrides);
   if (!config) {
     logger->critical("{}", config.error().message);
     return 1;
@@ -83,7 +82,8 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "vision_gateway"});
+  logger->info("{}", ssl::service::describe(*setup));
+  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "vision_gateway", .discovery = setup->discovery});
   if (!participant) {
     logger->critical("{}", participant.error().message);
     return 1;
@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
     logger->critical("{}", service.error().message);
     return 1;
   }
-  logger->info("config {}, domain {}, source {}", flags.config_file, flags.domain, config->source);
+  logger->info("domain {}, source {}", flags.domain, config->source);
   (*service)->run(shutdown);
   logger->info("stopping");
   return 0;

@@ -112,9 +112,12 @@ time::Duration seconds(double s) { return time::duration_from_seconds(s); }
 
 }  // namespace
 
-Result<VisionGatewayConfig> load_vision_gateway_config(const std::string& path,
-                                                       const std::vector<std::string>& overrides) {
-  return config::load_file(path, gateway_fields(), overrides);
+Result<VisionGatewayConfig> load_vision_gateway_config(std::span<const std::string> files, const std::vector<std::string>& overrides) {
+  return config::load_files(files, gateway_fields(), overrides);
+}
+
+Result<VisionGatewayConfig> load_vision_gateway_config(const std::string& path, const std::vector<std::string>& overrides) {
+  return load_vision_gateway_config(std::span<const std::string>(&path, 1), overrides);
 }
 
 std::string vision_gateway_config_yaml(const VisionGatewayConfig& config) {

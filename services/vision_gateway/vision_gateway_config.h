@@ -6,6 +6,7 @@
 // frames, or none.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,10 @@ struct VisionGatewayConfig {
 };
 
 /// Loads and validates a config file; `overrides` are "key.path=value" strings (from flags).
-Result<VisionGatewayConfig> load_vision_gateway_config(const std::string& path,
-                                                       const std::vector<std::string>& overrides);
+/// `files`: the config's layers, lowest first (ssl::config_layers: defaults, site, --config).
+Result<VisionGatewayConfig> load_vision_gateway_config(std::span<const std::string> files, const std::vector<std::string>& overrides);
+/// One complete file.
+Result<VisionGatewayConfig> load_vision_gateway_config(const std::string& path, const std::vector<std::string>& overrides);
 
 /// The effective config as YAML (for --print-config).
 std::string vision_gateway_config_yaml(const VisionGatewayConfig& config);

@@ -38,14 +38,24 @@ TEST(VisionGatewayConfig, DeployedDefaultListensToSslVisionOnLoopback) {
   EXPECT_EQ(service.gateway.defaults_division, DivisionChoice::kAuto);
 }
 
-TEST(VisionGatewayConfig, SimProfileHasTheSameKeysAndTheSimulatorPort) {
-  auto sim = load_vision_gateway_config(deployed("vision_gateway.sim.yaml"), {});
+TEST(VisionGatewayConfig, TheSitesChangeOnlyThePortAndTheInterface) {
+  auto sim_layers = config_layers("vision_gateway", "sim", "");
+  ASSERT_TRUE(sim_layers) << sim_layers.error().message;
+  auto sim = load_vision_gateway_config(*sim_layers, {});
   ASSERT_TRUE(sim) << sim.error().message;
   EXPECT_EQ(sim->network.vision_port, 10020);
-  auto real = load_vision_gateway_config(deployed("vision_gateway.yaml"), {});
-  ASSERT_TRUE(real);
-  real->network.vision_port = 10020;
-  EXPECT_EQ(vision_gateway_config_yaml(*real), vision_gateway_config_yaml(*sim));
+  EXPECT_EQ(sim->network.interface_address, "127.0.0.1");
+
+  auto field_layers = config_layers("vision_gateway", "field", "");
+  ASSERT_TRUE(field_layers) << field_layers.error().message;
+  auto field = load_vision_gateway_config(*field_layers, {});
+  ASSERT_TRUE(field) << field.error().message;
+  EXPECT_EQ(field->network.vision_port, 10006);
+  EXPECT_EQ(field->network.interface_address, "0.0.0.0");
+
+  field->network.vision_port = 10020;
+  field->network.interface_address = "127.0.0.1";
+  EXPECT_EQ(vision_gateway_config_yaml(*field), vision_gateway_config_yaml(*sim));
 }
 
 TEST(VisionGatewayConfig, FlagsOverrideKeysAndAFixedSourceBecomesAnAddress) {

@@ -6,7 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "libs/common/deploy_files.h"
+#include "libs/service/setup.h"
 #include "libs/common/shutdown.h"
 #include "libs/dds/participant.h"
 #include "libs/time/clock.h"
@@ -16,6 +16,7 @@
 int main(int argc, char** argv) {
   ssl::ShutdownSignal shutdown;  // before any thread exists
   std::string config_file;
+  std::string site;
   int domain = 0;
   std::string interface_address;
   std::string log_level = "info";
@@ -23,7 +24,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> overrides;
 
   CLI::App app{"world_model: filtered ball and robots in the team frame (world.state)", "world_model"};
-  app.add_option("--config", config_file, "YAML config (default deploy/config/world_model.yaml)");
+  app.add_option("--config", config_file, "YAML file laid over the defaults and the site (only the keys it changes)");
+  app.add_option("--site", site, ssl::service::kSiteHelp);
   app.add_option("--domain", domain, "DDS domain id")->check(CLI::Range(0, 232));
   app.add_option("--interface", interface_address, "multicast interface address (accepted for uniformity)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
@@ -44,15 +46,12 @@ int main(int argc, char** argv) {
   auto logger = spdlog::default_logger()->clone("world_model");
   logger->set_level(spdlog::level::from_str(log_level));
 
-  if (config_file.empty()) {
-    auto found = ssl::find_deploy_file("config/world_model.yaml");
-    if (!found) {
-      logger->critical("{}", found.error().message);
-      return 1;
-    }
-    config_file = *found;
+  auto setup = ssl::service::prepare("world_model", site, config_file);
+  if (!setup) {
+    logger->critical("{}", setup.error().message);
+    return 1;
   }
-  auto config = ssl::wm::load_world_model_config(config_file, overrides);
+  auto config = ssl::wm::load_world_model_config(setup->config_files, overrides);
   if (!config) {
     logger->critical("{}", config.error().message);
     return 1;
@@ -63,7 +62,8 @@ int main(int argc, char** argv) {
   }
 
   const std::string team(ssl::to_string(config->team));
-  auto participant = ssl::dds::Participant::create({.domain_id = domain, .name = "world_model/" + team});
+  logger->info("{}", ssl::service::describe(*setup));
+  auto participant = ssl::dds::Participant::create({.domain_id = domain, .name = "world_model/" + team, .discovery = setup->discovery});
   if (!participant) {
     logger->critical("{}", participant.error().message);
     return 1;

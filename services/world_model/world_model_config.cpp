@@ -138,11 +138,14 @@ Fields<WorldModelServiceConfig> service_fields() {
 
 }  // namespace
 
-Result<WorldModelServiceConfig> load_world_model_config(const std::string& path,
-                                                        const std::vector<std::string>& overrides) {
-  auto loaded = config::load_file(path, service_fields(), overrides);
+Result<WorldModelServiceConfig> load_world_model_config(std::span<const std::string> files, const std::vector<std::string>& overrides) {
+  auto loaded = config::load_files(files, service_fields(), overrides);
   if (loaded) loaded->core.team = loaded->team;
   return loaded;
+}
+
+Result<WorldModelServiceConfig> load_world_model_config(const std::string& path, const std::vector<std::string>& overrides) {
+  return load_world_model_config(std::span<const std::string>(&path, 1), overrides);
 }
 
 std::string world_model_config_yaml(const WorldModelServiceConfig& config) {

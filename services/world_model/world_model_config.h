@@ -2,6 +2,7 @@
 // start; flags (--team) override single keys. Units per key in the schema (world_model_config.cpp).
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -20,8 +21,10 @@ struct WorldModelServiceConfig {
   WorldModelConfig core;
 };
 
-Result<WorldModelServiceConfig> load_world_model_config(const std::string& path,
-                                                        const std::vector<std::string>& overrides);
+/// `files`: the config's layers, lowest first (ssl::config_layers: defaults, site, --config).
+Result<WorldModelServiceConfig> load_world_model_config(std::span<const std::string> files, const std::vector<std::string>& overrides);
+/// One complete file.
+Result<WorldModelServiceConfig> load_world_model_config(const std::string& path, const std::vector<std::string>& overrides);
 std::string world_model_config_yaml(const WorldModelServiceConfig& config);
 
 }  // namespace ssl::wm

@@ -18,6 +18,7 @@ namespace ssl::sslctl {
 struct DdsOptions {
   int domain_id = 0;
   std::optional<TeamColor> team;   // required for team-scoped topics
+  std::string site;                // --site (else $SSL_SITE): the site's DDS discovery
 };
 
 /// `sslctl topic list`: every topic with its type, scope and QoS profiles; `json` prints JSON lines.
@@ -71,6 +72,7 @@ int health(const DdsOptions& dds, double listen_s, bool json, ShutdownSignal& sh
 
 struct LatencyOptions {
   int domain_id = 0;
+  std::string site;       // --site (else $SSL_SITE): the site's DDS discovery
   double listen_s = 5.0;  // how long to collect samples
   bool json = false;      // one JSON object per stage
 };

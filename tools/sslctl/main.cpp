@@ -14,6 +14,7 @@ namespace {
 
 void add_dds_flags(CLI::App& command, ssl::sslctl::DdsOptions& options, std::string& team) {
   command.add_option("--domain", options.domain_id, "DDS domain id")->check(CLI::Range(0, 232));
+  command.add_option("--site", options.site, "site whose DDS discovery to use: sim, field or a directory (default $SSL_SITE)");
   command.add_option("--team", team, "team partition for team-scoped topics")
       ->check(CLI::IsMember({"blue", "yellow"}));
 }
@@ -119,6 +120,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   latency_cmd->add_flag("--json", latency.json, "one JSON object per stage");
   latency_cmd->add_option("--domain", latency.domain_id, "DDS domain id")->check(CLI::Range(0, 232));
+  latency_cmd->add_option("--site", latency.site, "site whose DDS discovery to use (default $SSL_SITE)");
 
   auto* log = app.add_subcommand("log", "SSL log files in the league's format (.log, .log.gz)");
   log->require_subcommand(1);

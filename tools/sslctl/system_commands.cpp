@@ -13,6 +13,7 @@
 #include "libs/common/percentile.h"
 #include "libs/dds/participant.h"
 #include "tools/sslctl/commands.h"
+#include "tools/sslctl/participant.h"
 
 namespace ssl::sslctl {
 namespace {
@@ -29,7 +30,7 @@ std::int64_t wall_clock_unix_ns() {
 
 int estop(bool engage, const std::string& reason, const DdsOptions& dds_options, double linger_s,
           ShutdownSignal& shutdown, std::ostream& out, std::ostream& err) {
-  auto participant = dds::Participant::create({.domain_id = dds_options.domain_id, .name = "sslctl/estop"});
+  auto participant = open_participant(dds_options.domain_id, dds_options.site, "sslctl/estop");
   if (!participant) {
     err << "sslctl: " << participant.error().message << '\n';
     return 1;
@@ -62,7 +63,7 @@ int estop(bool engage, const std::string& reason, const DdsOptions& dds_options,
 
 int health(const DdsOptions& dds_options, double listen_s, bool json, ShutdownSignal& shutdown,
            std::ostream& out, std::ostream& err) {
-  auto participant = dds::Participant::create({.domain_id = dds_options.domain_id, .name = "sslctl/health"});
+  auto participant = open_participant(dds_options.domain_id, dds_options.site, "sslctl/health");
   if (!participant) {
     err << "sslctl: " << participant.error().message << '\n';
     return 1;
@@ -111,7 +112,7 @@ struct Stage {
 }  // namespace
 
 int latency(const LatencyOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err) {
-  auto participant = dds::Participant::create({.domain_id = options.domain_id, .name = "sslctl/latency"});
+  auto participant = open_participant(options.domain_id, options.site, "sslctl/latency");
   if (!participant) {
     err << "sslctl: " << participant.error().message << '\n';
     return 1;

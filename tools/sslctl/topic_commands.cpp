@@ -10,6 +10,9 @@
 #include "idl/idl_json.h"
 #include "libs/dds/participant.h"
 #include "tools/sslctl/commands.h"
+#include "tools/sslctl/participant.h"
+
+#include "libs/service/setup.h"
 
 namespace ssl::sslctl {
 namespace {
@@ -52,7 +55,7 @@ auto open_endpoint(const Spec& spec, const DdsOptions& options, const std::strin
     status = 2;
     return std::nullopt;
   }
-  auto participant = dds::Participant::create({.domain_id = options.domain_id, .name = participant_name});
+  auto participant = open_participant(options.domain_id, options.site, participant_name);
   if (!participant) {
     err << "sslctl: " << participant.error().message << '\n';
     status = 1;
@@ -234,6 +237,12 @@ int topic_pub(const PubOptions& options, ShutdownSignal& shutdown, std::ostream&
     }
   });
   return known ? status : unknown_topic(options.topic, err);
+}
+
+Result<dds::Participant> open_participant(int domain_id, const std::string& site, std::string name) {
+  auto setup = service::prepare("", site, "");
+  if (!setup) return setup.error();
+  return dds::Participant::create({.domain_id = domain_id, .name = std::move(name), .discovery = setup->discovery});
 }
 
 }  // namespace ssl::sslctl

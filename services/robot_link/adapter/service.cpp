@@ -152,7 +152,7 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
     }
   }
 
-  auto participant = dds::Participant::create({.domain_id = options.domain_id, .name = instance});
+  auto participant = dds::Participant::create({.domain_id = options.domain_id, .name = instance, .discovery = options.discovery});
   if (!participant) return participant.error();
   // Readers are polled from the loop (no middleware callbacks: nothing of ours runs on Fast DDS threads,
   // and no callback can run before a reader is fully created).
@@ -170,7 +170,7 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
   std::optional<dds::Participant> estop_participant;
   std::optional<dds::Writer<idl::system::Estop>> estop_writer;
   if (estop_device || keyboard) {
-    auto created = dds::Participant::create({.domain_id = options.domain_id, .name = instance + "/estop"});
+    auto created = dds::Participant::create({.domain_id = options.domain_id, .name = instance + "/estop", .discovery = options.discovery});
     if (!created) return created.error();
     estop_participant.emplace(std::move(*created));
     auto writer = estop_participant->make_writer(dds::topics::kSystemEstop);

@@ -12,6 +12,7 @@
 
 #include "libs/common/result.h"
 #include "libs/common/shutdown.h"
+#include "libs/dds/discovery.h"
 #include "libs/common/team.h"
 #include "services/robot_link/robot_link_config.h"
 
@@ -21,6 +22,7 @@ struct ServiceOptions {
   RobotLinkConfig config;
   TeamColor team = TeamColor::kBlue;
   int domain_id = 0;
+  dds::DiscoveryConfig discovery;
 };
 
 /// Runs until `shutdown` is requested; an error when setup fails (backend, DDS).

@@ -1,0 +1,81 @@
+#include "libs/dds/discovery.h"
+
+#include <arpa/inet.h>
+
+#include "libs/config/config.h"
+
+namespace ssl::dds {
+
+namespace {
+
+bool is_ipv4(const std::string& text) {
+  in_addr address{};
+  return ::inet_pton(AF_INET, text.c_str(), &address) == 1;
+}
+
+// "host:port" with an IPv4 host and a port in 1..65535.
+bool is_server_address(const std::string& text) {
+  const std::size_t colon = text.rfind(':');
+  if (colon == std::string::npos || !is_ipv4(text.substr(0, colon))) return false;
+  const std::string port = text.substr(colon + 1);
+  if (port.empty() || port.size() > 5 || port.find_first_not_of("0123456789") != std::string::npos) return false;
+  const int value = std::stoi(port);
+  return value >= 1 && value <= 65535;
+}
+
+config::Fields<DiscoveryConfig> discovery_fields() {
+  using namespace config;
+  Fields<DiscoveryConfig> fields{
+      field("discovery", &DiscoveryConfig::mode)
+          .values({{"multicast", DiscoveryMode::kMulticast},
+                   {"server", DiscoveryMode::kServer},
+                   {"peers", DiscoveryMode::kPeers}})
+          .doc("multicast (standard), server (clients of `servers`) or peers (unicast to `peers`)"),
+      optional_field("servers", &DiscoveryConfig::servers, {})
+          .doc("server: discovery servers as IPv4 host:port, the i-th started with fastdds discovery -i i"),
+      optional_field("peers", &DiscoveryConfig::peers, {}).doc("peers: IPv4 addresses of the hosts"),
+      optional_field("peer_participants", &DiscoveryConfig::peer_participants, 16u)
+          .range(1u, 120u)
+          .doc("peers: participants per host and domain that are contacted"),
+  };
+  fields.check([](const DiscoveryConfig& c) -> Status {
+    for (const std::string& server : c.servers) {
+      if (!is_server_address(server)) return Error{"servers: '" + server + "' is not an IPv4 host:port"};
+    }
+    for (const std::string& peer : c.peers) {
+      if (!is_ipv4(peer)) return Error{"peers: '" + peer + "' is not an IPv4 address"};
+    }
+    if (c.mode == DiscoveryMode::kServer && c.servers.empty()) {
+      return Error{"discovery: server needs at least one entry in servers"};
+    }
+    if (c.mode == DiscoveryMode::kPeers && c.peers.empty()) {
+      return Error{"discovery: peers needs at least one entry in peers"};
+    }
+    return Status::success();
+  });
+  return fields;
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+  return text;
+}
+
+}  // namespace
+
+Result<DiscoveryConfig> load_discovery_config(std::span<const std::string> files,
+                                              const std::vector<std::string>& overrides) {
+  return config::load_files(files, discovery_fields(), overrides);
+}
+
+std::string describe(const DiscoveryConfig& config) {
+  switch (config.mode) {
+    case DiscoveryMode::kMulticast: return "multicast";
+    case DiscoveryMode::kServer: return "server " + join(config.servers);
+    case DiscoveryMode::kPeers: return "peers " + join(config.peers);
+  }
+  return "?";
+}
+
+}  // namespace ssl::dds

@@ -1,0 +1,34 @@
+#include "libs/service/setup.h"
+
+#include "libs/common/deploy_files.h"
+
+namespace ssl::service {
+
+Result<Setup> prepare(std::string_view service, const std::string& site_flag, const std::string& config_file) {
+  Setup setup;
+  setup.site = chosen_site(site_flag);
+  if (!service.empty()) {
+    auto layers = config_layers(service, setup.site, config_file);
+    if (!layers) return layers.error();
+    setup.config_files = std::move(*layers);
+  }
+  auto dds_layers = config_layers("dds", setup.site, "");
+  if (!dds_layers) return dds_layers.error();
+  auto discovery = dds::load_discovery_config(*dds_layers);
+  if (!discovery) return discovery.error();
+  setup.discovery = std::move(*discovery);
+  return setup;
+}
+
+std::string describe(const Setup& setup) {
+  std::string text = setup.site.empty() ? "no site" : "site " + setup.site;
+  if (!setup.config_files.empty()) {
+    text += ", config";
+    for (std::size_t i = 0; i < setup.config_files.size(); ++i) {
+      text += (i == 0 ? " " : " + ") + setup.config_files[i];
+    }
+  }
+  return text + ", discovery " + dds::describe(setup.discovery);
+}
+
+}  // namespace ssl::service
