@@ -90,10 +90,9 @@ void write_text(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
-// `cmake --install` of this build under `prefix`.
 void install_to(const fs::path& prefix) {
-  const ShellRun run = shell("cmake --install '" + kBuildDir.string() + "' --prefix '" + prefix.string() + "'");
-  ASSERT_EQ(run.status, 0) << run.output;
+  const Status installed = install_build(prefix);
+  ASSERT_TRUE(installed) << installed.error().message;
 }
 
 // One unit file: the values of each "Key=" of its [Service] section (and the others), in order.

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 
 namespace ssl::testing {
@@ -18,6 +19,19 @@ using Clock = std::chrono::steady_clock;
 
 fs::path bin_dir() {
   return fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "bin";
+}
+
+Status install_build(const fs::path& prefix) {
+  const fs::path build = bin_dir().parent_path();
+  const std::string command = "cmake --install '" + build.string() + "' --prefix '" + prefix.string() + "' 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return Error{"cannot run " + command};
+  std::string output;
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
+  const int status = ::pclose(pipe);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return Error{command + " failed:\n" + output};
+  return Status::success();
 }
 
 Result<ChildProcess> ChildProcess::start(const fs::path& program, const std::vector<std::string>& args) {

@@ -22,6 +22,10 @@ namespace ssl::testing {
 /// build/bin, found relative to the running test executable (build/tests/<test>).
 std::filesystem::path bin_dir();
 
+/// `cmake --install` of this build under `prefix` (a match PC's tree: prefix/opt/ssl-stack/bin,
+/// prefix/etc/ssl-stack, prefix/lib/systemd/system); the error carries cmake's output.
+Status install_build(const std::filesystem::path& prefix);
+
 class ChildProcess {
  public:
   static Result<ChildProcess> start(const std::filesystem::path& program, const std::vector<std::string>& args);

@@ -1,0 +1,410 @@
+// A match spread over four hosts, each a network namespace joined to the others by veth pairs over one
+// bridge (addresses in 198.18.0.0/15), run from this build installed as on a match PC (cmake --install:
+// /opt/ssl-stack/bin and /etc/ssl-stack under a prefix; the namespaces share it as two PCs each with the
+// package would):
+//   A 198.18.0.1  the field PC: simulator (no vision noise: its vision is the ground truth), vision_gateway,
+//                 referee_gateway with the built-in referee, both robot_links (the radio host)
+//   B 198.18.0.2  blue world_model + planner
+//   C 198.18.0.3  yellow world_model + planner
+//   D 198.18.0.4  the coach box: sslctl (starts the match, reads health)
+// Once with multicast discovery, once with multicast dropped by the bridge and a discovery server on A (a
+// site of the install like sim with `discovery: server`). Each run: both teams move during 20 s of play;
+// cutting B's link stops blue (robot_link's 100 ms watchdog, then braking) while yellow's commands keep
+// reaching its robots; restoring it brings blue's commands back to A within 3 s; killing B's planner and
+// starting it again as its unit would (RestartSec=1) brings them back too (the referee state and geometry
+// caught up from transient-local samples), blue standing meanwhile. Motion is the simulator's noise-free
+// vision read on A; commands are robot.commands samples read on A. Needs root; skips without it. Figures
+// are printed.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/support/netns.h"
+#include "tests/support/process.h"
+
+namespace ssl::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+using Clock = std::chrono::system_clock;
+
+std::int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+}
+
+constexpr double kStoppedSpeed = 0.1;  // m/s: a robot slower than this stands
+constexpr double kMoved = 0.3;         // m: a team whose robot went this far in a window moves
+
+// The four hosts and the switch. Deleted with the object.
+class Network {
+ public:
+  static Result<Network> create() {
+    Network net;
+    auto sw = NetNamespace::create("ssl-mh-sw");
+    if (!sw) return sw.error();
+    net.switch_.emplace(std::move(*sw));
+    if (Status ok = NetNamespace::run_ip({"-n", "ssl-mh-sw", "link", "add", "br0", "type", "bridge"}); !ok) return ok.error();
+    if (Status ok = NetNamespace::run_ip({"-n", "ssl-mh-sw", "link", "set", "br0", "up"}); !ok) return ok.error();
+    const char* names[] = {"a", "b", "c", "d"};
+    for (int i = 0; i < 4; ++i) {
+      const std::string host = std::string("ssl-mh-") + names[i];
+      auto ns = NetNamespace::create(host);
+      if (!ns) return ns.error();
+      net.hosts_.push_back(std::move(*ns));
+      const std::string port = std::string("v") + names[i];
+      for (const std::vector<std::string>& step : std::vector<std::vector<std::string>>{
+               {"link", "add", "eth0", "netns", host, "type", "veth", "peer", "name", port, "netns", "ssl-mh-sw"},
+               {"-n", "ssl-mh-sw", "link", "set", port, "master", "br0"},
+               {"-n", "ssl-mh-sw", "link", "set", port, "up"},
+               {"-n", host, "addr", "add", "198.18.0." + std::to_string(i + 1) + "/15", "dev", "eth0"},
+               {"-n", host, "link", "set", "eth0", "up"},
+               {"-n", host, "route", "add", "224.0.0.0/4", "dev", "eth0", "metric", "10"}}) {
+        if (Status ok = NetNamespace::run_ip(step); !ok) return ok.error();
+      }
+    }
+    return net;
+  }
+
+  const NetNamespace& host(char name) const { return hosts_.at(static_cast<std::size_t>(name - 'a')); }
+
+  /// Multicast dropped between the hosts (the bridge forwards no multicast frame).
+  static Status block_multicast() {
+    for (const std::string& rule : {std::string("add table bridge ssl"),
+                                    std::string("add chain bridge ssl forward { type filter hook forward priority 0; }"),
+                                    std::string("add rule bridge ssl forward meta pkttype multicast drop")}) {
+      const std::string command = NetNamespace::ip().string() + " netns exec ssl-mh-sw nft '" + rule + "' 2>&1";
+      if (std::system(command.c_str()) != 0) return Error{"nft " + rule + " failed (is nftables installed?)"};
+    }
+    return Status::success();
+  }
+  /// B's cable: the switch's port of B down or up.
+  static Status set_link(char host, bool up) {
+    return NetNamespace::run_ip({"-n", "ssl-mh-sw", "link", "set", std::string("v") + host, up ? "up" : "down"});
+  }
+
+ private:
+  Network() = default;
+  std::optional<NetNamespace> switch_;
+  std::vector<NetNamespace> hosts_;
+};
+
+// The simulator's noise-free vision, read on A (where the link cuts do not reach): every robot's position
+// at each camera frame's capture time (wall clock, ns).
+class Truth {
+ public:
+  explicit Truth(ChildProcess echo) : echo_(std::move(echo)), reader_([this] { read(); }) {}
+  ~Truth() {
+    stop_ = true;
+    echo_.signal(SIGTERM);
+    reader_.join();
+  }
+
+  /// The largest distance any robot of `team` ("blue", "yellow") went between `from` and `to` (ns).
+  double moved(const std::string& team, std::int64_t from, std::int64_t to) const {
+    std::vector<std::uint32_t> ids;
+    {
+      std::lock_guard lock(mutex_);
+      for (const auto& [key, track] : tracks_) {
+        if (key.first == team) ids.push_back(key.second);
+      }
+    }
+    double best = 0;
+    for (std::uint32_t id : ids) best = std::max(best, robot_moved(team, id, from, to));
+    return best;
+  }
+
+  /// The largest distance robot `id` of `team` went from where it was first seen after `from`, until `to`.
+  double robot_moved(const std::string& team, std::uint32_t id, std::int64_t from, std::int64_t to) const {
+    std::lock_guard lock(mutex_);
+    const auto found = tracks_.find({team, id});
+    if (found == tracks_.end()) return 0;
+    std::optional<std::pair<double, double>> first;
+    double best = 0;
+    for (const Sample& s : found->second) {
+      if (s.t < from || s.t > to) continue;
+      if (!first) first = std::make_pair(s.x, s.y);
+      best = std::max(best, std::hypot(s.x - first->first, s.y - first->second));
+    }
+    return best;
+  }
+
+  /// The time after `from` by which every robot of `team` had come to a stand (below kStoppedSpeed over a
+  /// 0.1 s step) at least once before `to`: the latest of their first standing steps. A robot pushed after
+  /// it stood still counts as stopped. nullopt when one of them never stood.
+  std::optional<std::int64_t> all_stood_by(const std::string& team, std::int64_t from, std::int64_t to) const {
+    constexpr std::int64_t kStep = 100'000'000;
+    std::vector<std::uint32_t> ids;
+    {
+      std::lock_guard lock(mutex_);
+      for (const auto& [key, track] : tracks_) {
+        if (key.first == team) ids.push_back(key.second);
+      }
+    }
+    std::int64_t latest = from;
+    for (std::uint32_t id : ids) {
+      std::optional<std::int64_t> stood;
+      for (std::int64_t t = from; t + kStep <= to && !stood; t += kStep) {
+        if (robot_moved(team, id, t, t + kStep) < kStoppedSpeed * 0.1) stood = t;
+      }
+      if (!stood) return std::nullopt;
+      latest = std::max(latest, *stood);
+    }
+    return latest;
+  }
+
+  /// The largest distance per 0.1 s step from `from` to `to`, for failure messages.
+  std::string windows(const std::string& team, std::int64_t from, std::int64_t to) const {
+    std::string text;
+    for (std::int64_t t = from; t + 100'000'000 <= to; t += 100'000'000) {
+      text += std::to_string(static_cast<int>(moved(team, t, t + 100'000'000) * 1000)) + " ";
+    }
+    return text + "(mm per 0.1 s)";
+  }
+
+  std::size_t frames() const {
+    std::lock_guard lock(mutex_);
+    return frames_;
+  }
+
+  /// Observations of `team`'s robots between `from` and `to`, for failure messages.
+  std::size_t samples(const std::string& team, std::int64_t from, std::int64_t to) const {
+    std::lock_guard lock(mutex_);
+    std::size_t count = 0;
+    for (const auto& [key, track] : tracks_) {
+      if (key.first != team) continue;
+      count += static_cast<std::size_t>(std::count_if(track.begin(), track.end(),
+                                                      [&](const Sample& s) { return s.t >= from && s.t <= to; }));
+    }
+    return count;
+  }
+
+ private:
+  struct Sample {
+    std::int64_t t;
+    double x;
+    double y;
+  };
+  void read() {
+    while (!stop_) {
+      auto line = echo_.read_line(500ms);
+      if (!line) continue;
+      auto frame = nlohmann::json::parse(*line, nullptr, false);
+      if (!frame.is_object()) continue;
+      std::lock_guard lock(mutex_);
+      ++frames_;
+      const std::int64_t t = frame.value("capture_unix_ns", std::int64_t{0});
+      for (const char* team : {"blue", "yellow"}) {
+        for (const auto& robot : frame[std::string("robots_") + team]) {
+          tracks_[{team, robot.value("robot_id", 0u)}].push_back({t, robot.value("x", 0.0), robot.value("y", 0.0)});
+        }
+      }
+    }
+  }
+
+  ChildProcess echo_;
+  std::atomic<bool> stop_{false};
+  mutable std::mutex mutex_;
+  std::map<std::pair<std::string, std::uint32_t>, std::vector<Sample>> tracks_;
+  std::size_t frames_ = 0;
+  std::thread reader_;
+};
+
+// When one team's robot.commands samples reach A (robot_link's host): the planner across the network, as
+// the field PC sees it (wall clock, ns, at reading).
+class Arrivals {
+ public:
+  explicit Arrivals(ChildProcess echo) : echo_(std::move(echo)), reader_([this] { read(); }) {}
+  ~Arrivals() {
+    stop_ = true;
+    echo_.signal(SIGTERM);
+    reader_.join();
+  }
+  /// The first arrival after `t`, if any.
+  std::optional<std::int64_t> first_after(std::int64_t t) const {
+    std::lock_guard lock(mutex_);
+    const auto it = std::upper_bound(times_.begin(), times_.end(), t);
+    if (it == times_.end()) return std::nullopt;
+    return *it;
+  }
+  /// The longest time without an arrival between `from` and `to` (ns).
+  std::int64_t longest_gap(std::int64_t from, std::int64_t to) const {
+    std::lock_guard lock(mutex_);
+    std::int64_t last = from;
+    std::int64_t gap = 0;
+    for (std::int64_t t : times_) {
+      if (t <= from || t > to) continue;
+      gap = std::max(gap, t - last);
+      last = t;
+    }
+    return std::max(gap, to - last);
+  }
+
+ private:
+  void read() {
+    while (!stop_) {
+      if (!echo_.read_line(500ms)) continue;
+      std::lock_guard lock(mutex_);
+      times_.push_back(now_ns());
+    }
+  }
+  ChildProcess echo_;
+  std::atomic<bool> stop_{false};
+  mutable std::mutex mutex_;
+  std::vector<std::int64_t> times_;
+  std::thread reader_;
+};
+
+struct Layout {
+  std::string name;
+  bool multicast = true;
+  int domain = 0;
+};
+
+class MultiHost : public ::testing::TestWithParam<Layout> {};
+
+void PrintTo(const Layout& layout, std::ostream* os) { *os << layout.name; }
+
+TEST_P(MultiHost, AMatchAcrossFourHostsSurvivesACutLinkAndAKilledPlanner) {
+  if (::geteuid() != 0) GTEST_SKIP() << "network namespaces need root";
+  auto net = Network::create();
+  if (!net) GTEST_SKIP() << "cannot make the network namespaces: " << net.error().message;
+  const Layout& run = GetParam();
+  const std::string domain = std::to_string(run.domain);
+  const fs::path prefix = fs::temp_directory_path() / ("ssl_multihost_" + std::to_string(::getpid()));
+  ASSERT_TRUE(install_build(prefix));
+  const fs::path installed_bin = prefix / "opt/ssl-stack/bin";
+
+  // The site: sim, or sim with a discovery server on A where multicast does not pass.
+  std::string site = "sim";
+  const fs::path site_dir = prefix / "etc/ssl-stack/sites/sim-without-multicast";
+  std::optional<ChildProcess> discovery_server;
+  if (!run.multicast) {
+    ASSERT_TRUE(Network::block_multicast());
+    fs::create_directories(site_dir);
+    for (const char* file : {"vision_gateway.yaml", "referee_gateway.yaml", "robot_link.yaml"}) {
+      fs::copy_file(prefix / "etc/ssl-stack/sites/sim" / file, site_dir / file, fs::copy_options::overwrite_existing);
+    }
+    std::ofstream(site_dir / "dds.yaml") << "discovery: server\nservers: [198.18.0.1:11811]\n";
+    site = "sim-without-multicast";  // a site of the install, by name
+    auto server = ChildProcess::start(NetNamespace::ip(), net->host('a').exec_args("/usr/bin/fastdds",
+                                                                                   {"discovery", "-i", "0", "-l",
+                                                                                    "198.18.0.1", "-p", "11811"}));
+    ASSERT_TRUE(server) << server.error().message;
+    discovery_server.emplace(std::move(*server));
+  }
+  const auto start = [&](char host, const std::string& program, std::vector<std::string> args) {
+    args.insert(args.end(), {"--site", site, "--domain", domain});
+    auto child = ChildProcess::start(NetNamespace::ip(), net->host(host).exec_args(installed_bin / program, args));
+    if (!child) throw std::runtime_error(child.error().message);
+    return std::move(*child);
+  };
+  std::vector<ChildProcess> services;
+  services.push_back(start('a', "simulator", {"--division", "b", "--robots", "6", "--realism", "none"}));
+  services.push_back(start('a', "vision_gateway", {}));
+  services.push_back(start('a', "referee_gateway", {"--set", "builtin.division=b"}));
+  services.push_back(start('a', "robot_link", {"--team", "blue"}));
+  services.push_back(start('a', "robot_link", {"--team", "yellow"}));
+  services.push_back(start('b', "world_model", {"--team", "blue"}));
+  std::optional<ChildProcess> blue_planner(start('b', "planner", {"--team", "blue"}));
+  services.push_back(start('c', "world_model", {"--team", "yellow"}));
+  services.push_back(start('c', "planner", {"--team", "yellow"}));
+
+  Truth truth(start('a', "sslctl", {"topic", "echo", "vision.detection"}));
+  Arrivals blue_commands(start('a', "sslctl", {"topic", "echo", "robot.commands", "--team", "blue"}));
+  Arrivals yellow_commands(start('a', "sslctl", {"topic", "echo", "robot.commands", "--team", "yellow"}));
+  // The coach box starts the match: the operator's first STOP to the built-in referee.
+  auto stop = start('d', "sslctl", {"topic", "pub", "referee.command", R"({"command": "COMMAND_STOP", "author": "multihost"})",
+                                    "--wait-readers", "1", "--wait-timeout", "30", "--linger", "1"});
+  ASSERT_EQ(stop.wait(40s), 0) << "the coach box could not reach the referee: " << stop.drain_stderr();
+
+  // 20 s of play: both teams move.
+  const std::int64_t play_start = now_ns();
+  std::this_thread::sleep_for(20s);  // the match plays; this is the observation window, not a wait for discovery
+  const std::int64_t play_end = now_ns();
+  ASSERT_GT(truth.frames(), 100u) << "no vision reached the observer";
+  EXPECT_GT(truth.moved("blue", play_start, play_end), kMoved) << "blue did not play";
+  EXPECT_GT(truth.moved("yellow", play_start, play_end), kMoved) << "yellow did not play";
+
+  // B's cable out for 4 s: blue stands (watchdog 100 ms + braking); yellow's commands keep reaching A.
+  const std::int64_t cut = now_ns();
+  ASSERT_TRUE(Network::set_link('b', false));
+  std::this_thread::sleep_for(4s);
+  const std::int64_t restored = now_ns();
+  ASSERT_TRUE(Network::set_link('b', true));
+  const auto stopped = truth.all_stood_by("blue", cut, restored);
+  ASSERT_TRUE(stopped) << "blue robots kept moving with their planner cut off: " << truth.windows("blue", cut, restored);
+  const double stop_s = static_cast<double>(*stopped - cut) * 1e-9;
+  // The watchdog's 0.1 s, braking from the limit's 3 m/s at 4 m/s^2 (0.75 s), and 0.75 s for the vision
+  // frames, robot_link's 100 Hz tick and the 0.1 s steps of the observation.
+  EXPECT_LE(stop_s, 1.6) << "stop later than the watchdog plus braking from full speed: "
+                         << truth.windows("blue", cut, restored);
+  const double yellow_gap_s = static_cast<double>(yellow_commands.longest_gap(cut, restored)) * 1e-9;
+  EXPECT_LT(yellow_gap_s, 0.5) << "yellow's commands stopped reaching its robots";
+
+  // Back within 3 s: blue's commands reach A again.
+  std::optional<std::int64_t> resumed;
+  for (int i = 0; i < 60 && !resumed; ++i) {
+    std::this_thread::sleep_for(100ms);  // polls the observer
+    resumed = blue_commands.first_after(restored);
+  }
+  ASSERT_TRUE(resumed) << "blue's commands did not reach A within 6 s of the link coming back";
+  const double resume_s = static_cast<double>(*resumed - restored) * 1e-9;
+  EXPECT_LE(resume_s, 3.0);
+
+  // B's planner killed, started again as its unit does (Restart=on-failure, RestartSec=1): while it is
+  // down blue stands (robot_link's watchdog); it catches up (referee state, geometry: transient local) and
+  // its commands reach A again.
+  blue_planner->signal(SIGKILL);
+  (void)blue_planner->wait(5s);
+  const std::int64_t killed = now_ns();
+  std::this_thread::sleep_for(1s);  // the unit's RestartSec
+  const std::int64_t restarted = now_ns();
+  blue_planner.emplace(start('b', "planner", {"--team", "blue"}));
+  std::optional<std::int64_t> back;
+  for (int i = 0; i < 80 && !back; ++i) {
+    std::this_thread::sleep_for(100ms);  // polls the observer
+    back = blue_commands.first_after(restarted);
+  }
+  ASSERT_TRUE(back) << "blue's planner did not command again after its restart";
+  const double back_s = static_cast<double>(*back - restarted) * 1e-9;
+  EXPECT_LE(back_s, 5.0) << "from the restart";
+  EXPECT_TRUE(truth.all_stood_by("blue", killed, *back)) << "blue robots kept moving without their planner: "
+                                                         << truth.windows("blue", killed, *back);
+
+  std::printf("[figures] multihost %s: blue stood %.2f s after the cut (yellow's commands: longest gap %.3f s, its "
+              "robots moved up to %.2f m); blue's commands back %.2f s after the link, %.2f s after its planner "
+              "restarted\n",
+              run.name.c_str(), stop_s, yellow_gap_s, truth.moved("yellow", cut, restored), resume_s, back_s);
+  std::fflush(stdout);
+
+  for (ChildProcess& child : services) child.signal(SIGTERM);
+  blue_planner->signal(SIGTERM);
+  for (ChildProcess& child : services) (void)child.wait(15s);
+  (void)blue_planner->wait(15s);
+  if (discovery_server) discovery_server->signal(SIGTERM);
+  fs::remove_all(prefix);
+}
+
+INSTANTIATE_TEST_SUITE_P(Discovery, MultiHost,
+                         ::testing::Values(Layout{"multicast", true, 170}, Layout{"server_without_multicast", false, 171}),
+                         [](const ::testing::TestParamInfo<Layout>& param) { return param.param.name; });
+
+}  // namespace
+}  // namespace ssl::testing
