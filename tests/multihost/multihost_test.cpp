@@ -7,9 +7,9 @@
 //   B 198.18.0.2  blue world_model + planner
 //   C 198.18.0.3  yellow world_model + planner
 //   D 198.18.0.4  the coach box: sslctl (starts the match, reads health)
-// Once with multicast discovery, once with multicast dropped by the bridge and a discovery server on A (a
-// site of the install like sim with `discovery: server`). Each run: both teams move during 20 s of play;
-// cutting B's link stops blue (robot_link's 100 ms watchdog, then braking) while yellow's commands keep
+// With multicast discovery; and with multicast dropped by the bridge, using a discovery server on A or
+// unicast peers (a site of the install like sim with `discovery: server` or `discovery: peers`). Each run:
+// both teams move during 20 s of play; cutting B's link stops blue (robot_link's 100 ms watchdog, then braking) while yellow's commands keep
 // reaching its robots; restoring it brings blue's commands back to A within 3 s; killing B's planner and
 // starting it again as its unit would (RestartSec=1) brings them back too (the referee state and geometry
 // caught up from transient-local samples), blue standing meanwhile. Motion is the simulator's noise-free
@@ -271,9 +271,12 @@ class Arrivals {
   std::thread reader_;
 };
 
+// How the hosts find each other: the site's dds.yaml (libs/dds/discovery.h).
+enum class Discovery { kMulticast, kServer, kPeers };
+
 struct Layout {
   std::string name;
-  bool multicast = true;
+  Discovery discovery = Discovery::kMulticast;
   int domain = 0;
 };
 
@@ -291,18 +294,24 @@ TEST_P(MultiHost, AMatchAcrossFourHostsSurvivesACutLinkAndAKilledPlanner) {
   ASSERT_TRUE(install_build(prefix));
   const fs::path installed_bin = prefix / "opt/ssl-stack/bin";
 
-  // The site: sim, or sim with a discovery server on A where multicast does not pass.
+  // The site: sim; or, where the bridge drops multicast, a site of the install like sim whose discovery is
+  // a server on A, or unicast to the four hosts' addresses.
   std::string site = "sim";
   const fs::path site_dir = prefix / "etc/ssl-stack/sites/sim-without-multicast";
   std::optional<ChildProcess> discovery_server;
-  if (!run.multicast) {
+  if (run.discovery != Discovery::kMulticast) {
     ASSERT_TRUE(Network::block_multicast());
     fs::create_directories(site_dir);
     for (const char* file : {"vision_gateway.yaml", "referee_gateway.yaml", "robot_link.yaml"}) {
       fs::copy_file(prefix / "etc/ssl-stack/sites/sim" / file, site_dir / file, fs::copy_options::overwrite_existing);
     }
-    std::ofstream(site_dir / "dds.yaml") << "discovery: server\nservers: [198.18.0.1:11811]\n";
+    std::ofstream(site_dir / "dds.yaml")
+        << (run.discovery == Discovery::kServer
+                ? "discovery: server\nservers: [198.18.0.1:11811]\n"
+                : "discovery: peers\npeers: [198.18.0.1, 198.18.0.2, 198.18.0.3, 198.18.0.4]\n");
     site = "sim-without-multicast";  // a site of the install, by name
+  }
+  if (run.discovery == Discovery::kServer) {
     auto server = ChildProcess::start(NetNamespace::ip(), net->host('a').exec_args("/usr/bin/fastdds",
                                                                                    {"discovery", "-i", "0", "-l",
                                                                                     "198.18.0.1", "-p", "11811"}));
@@ -403,7 +412,9 @@ TEST_P(MultiHost, AMatchAcrossFourHostsSurvivesACutLinkAndAKilledPlanner) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Discovery, MultiHost,
-                         ::testing::Values(Layout{"multicast", true, 170}, Layout{"server_without_multicast", false, 171}),
+                         ::testing::Values(Layout{"multicast", Discovery::kMulticast, 170},
+                                           Layout{"server_without_multicast", Discovery::kServer, 171},
+                                           Layout{"peers_without_multicast", Discovery::kPeers, 172}),
                          [](const ::testing::TestParamInfo<Layout>& param) { return param.param.name; });
 
 }  // namespace
