@@ -9,12 +9,12 @@
 //   D 198.18.0.4  the coach box: sslctl (starts the match, reads health)
 // With multicast discovery; and with multicast dropped by the bridge, using a discovery server on A or
 // unicast peers (a site of the install like sim with `discovery: server` or `discovery: peers`). Each run:
-// both teams move during 20 s of play; cutting B's link stops blue (robot_link's 100 ms watchdog, then braking) while yellow's commands keep
-// reaching its robots; restoring it brings blue's commands back to A within 3 s; killing B's planner and
-// starting it again as its unit would (RestartSec=1) brings them back too (the referee state and geometry
-// caught up from transient-local samples), blue standing meanwhile. Motion is the simulator's noise-free
-// vision read on A; commands are robot.commands samples read on A. Needs root; skips without it. Figures
-// are printed.
+// both teams move during 20 s of play; cutting B's link stops blue (robot_link's 100 ms watchdog, then
+// braking) while yellow's commands keep reaching its robots; restoring it brings blue's commands back to A
+// within 3 s; killing B's planner and starting it again as its unit would (RestartSec=1) brings them back
+// too (the referee state and geometry caught up from transient-local samples), blue standing meanwhile.
+// Motion is the simulator's noise-free vision read on A; commands are robot.commands samples read on A.
+// Needs root; skips without it. Figures are printed.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -52,27 +52,32 @@ std::int64_t now_ns() {
 constexpr double kStoppedSpeed = 0.1;  // m/s: a robot slower than this stands
 constexpr double kMoved = 0.3;         // m: a team whose robot went this far in a window moves
 
-// The four hosts and the switch. Deleted with the object.
+// The four hosts and the switch, named after `tag` (runs in parallel each have their own). Deleted with
+// the object.
 class Network {
  public:
-  static Result<Network> create() {
+  static Result<Network> create(const std::string& tag) {
     Network net;
-    auto sw = NetNamespace::create("ssl-mh-sw");
+    net.switch_name_ = "ssl-mh" + tag + "-sw";
+    auto sw = NetNamespace::create(net.switch_name_);
     if (!sw) return sw.error();
     net.switch_.emplace(std::move(*sw));
-    if (Status ok = NetNamespace::run_ip({"-n", "ssl-mh-sw", "link", "add", "br0", "type", "bridge"}); !ok) return ok.error();
-    if (Status ok = NetNamespace::run_ip({"-n", "ssl-mh-sw", "link", "set", "br0", "up"}); !ok) return ok.error();
+    for (const std::vector<std::string>& step : std::vector<std::vector<std::string>>{
+             {"-n", net.switch_name_, "link", "add", "br0", "type", "bridge"},
+             {"-n", net.switch_name_, "link", "set", "br0", "up"}}) {
+      if (Status ok = NetNamespace::run_ip(step); !ok) return ok.error();
+    }
     const char* names[] = {"a", "b", "c", "d"};
     for (int i = 0; i < 4; ++i) {
-      const std::string host = std::string("ssl-mh-") + names[i];
+      const std::string host = "ssl-mh" + tag + "-" + names[i];
       auto ns = NetNamespace::create(host);
       if (!ns) return ns.error();
       net.hosts_.push_back(std::move(*ns));
       const std::string port = std::string("v") + names[i];
       for (const std::vector<std::string>& step : std::vector<std::vector<std::string>>{
-               {"link", "add", "eth0", "netns", host, "type", "veth", "peer", "name", port, "netns", "ssl-mh-sw"},
-               {"-n", "ssl-mh-sw", "link", "set", port, "master", "br0"},
-               {"-n", "ssl-mh-sw", "link", "set", port, "up"},
+               {"link", "add", "eth0", "netns", host, "type", "veth", "peer", "name", port, "netns", net.switch_name_},
+               {"-n", net.switch_name_, "link", "set", port, "master", "br0"},
+               {"-n", net.switch_name_, "link", "set", port, "up"},
                {"-n", host, "addr", "add", "198.18.0." + std::to_string(i + 1) + "/15", "dev", "eth0"},
                {"-n", host, "link", "set", "eth0", "up"},
                {"-n", host, "route", "add", "224.0.0.0/4", "dev", "eth0", "metric", "10"}}) {
@@ -85,22 +90,23 @@ class Network {
   const NetNamespace& host(char name) const { return hosts_.at(static_cast<std::size_t>(name - 'a')); }
 
   /// Multicast dropped between the hosts (the bridge forwards no multicast frame).
-  static Status block_multicast() {
+  Status block_multicast() const {
     for (const std::string& rule : {std::string("add table bridge ssl"),
                                     std::string("add chain bridge ssl forward { type filter hook forward priority 0; }"),
                                     std::string("add rule bridge ssl forward meta pkttype multicast drop")}) {
-      const std::string command = NetNamespace::ip().string() + " netns exec ssl-mh-sw nft '" + rule + "' 2>&1";
+      const std::string command = NetNamespace::ip().string() + " netns exec " + switch_name_ + " nft '" + rule + "' 2>&1";
       if (std::system(command.c_str()) != 0) return Error{"nft " + rule + " failed (is nftables installed?)"};
     }
     return Status::success();
   }
-  /// B's cable: the switch's port of B down or up.
-  static Status set_link(char host, bool up) {
-    return NetNamespace::run_ip({"-n", "ssl-mh-sw", "link", "set", std::string("v") + host, up ? "up" : "down"});
+  /// A host's cable: the switch's port of `host` down or up.
+  Status set_link(char host, bool up) const {
+    return NetNamespace::run_ip({"-n", switch_name_, "link", "set", std::string("v") + host, up ? "up" : "down"});
   }
 
  private:
   Network() = default;
+  std::string switch_name_;
   std::optional<NetNamespace> switch_;
   std::vector<NetNamespace> hosts_;
 };
@@ -286,9 +292,9 @@ void PrintTo(const Layout& layout, std::ostream* os) { *os << layout.name; }
 
 TEST_P(MultiHost, AMatchAcrossFourHostsSurvivesACutLinkAndAKilledPlanner) {
   if (::geteuid() != 0) GTEST_SKIP() << "network namespaces need root";
-  auto net = Network::create();
-  if (!net) GTEST_SKIP() << "cannot make the network namespaces: " << net.error().message;
   const Layout& run = GetParam();
+  auto net = Network::create(std::to_string(run.domain));
+  if (!net) GTEST_SKIP() << "cannot make the network namespaces: " << net.error().message;
   const std::string domain = std::to_string(run.domain);
   const fs::path prefix = fs::temp_directory_path() / ("ssl_multihost_" + std::to_string(::getpid()));
   ASSERT_TRUE(install_build(prefix));
@@ -300,7 +306,7 @@ TEST_P(MultiHost, AMatchAcrossFourHostsSurvivesACutLinkAndAKilledPlanner) {
   const fs::path site_dir = prefix / "etc/ssl-stack/sites/sim-without-multicast";
   std::optional<ChildProcess> discovery_server;
   if (run.discovery != Discovery::kMulticast) {
-    ASSERT_TRUE(Network::block_multicast());
+    ASSERT_TRUE(net->block_multicast());
     fs::create_directories(site_dir);
     for (const char* file : {"vision_gateway.yaml", "referee_gateway.yaml", "robot_link.yaml"}) {
       fs::copy_file(prefix / "etc/ssl-stack/sites/sim" / file, site_dir / file, fs::copy_options::overwrite_existing);
@@ -353,10 +359,10 @@ TEST_P(MultiHost, AMatchAcrossFourHostsSurvivesACutLinkAndAKilledPlanner) {
 
   // B's cable out for 4 s: blue stands (watchdog 100 ms + braking); yellow's commands keep reaching A.
   const std::int64_t cut = now_ns();
-  ASSERT_TRUE(Network::set_link('b', false));
+  ASSERT_TRUE(net->set_link('b', false));
   std::this_thread::sleep_for(4s);
   const std::int64_t restored = now_ns();
-  ASSERT_TRUE(Network::set_link('b', true));
+  ASSERT_TRUE(net->set_link('b', true));
   const auto stopped = truth.all_stood_by("blue", cut, restored);
   ASSERT_TRUE(stopped) << "blue robots kept moving with their planner cut off: " << truth.windows("blue", cut, restored);
   const double stop_s = static_cast<double>(*stopped - cut) * 1e-9;
