@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "libs/service/flags.h"
 #include "libs/service/setup.h"
 #include "libs/common/shutdown.h"
 #include "libs/dds/participant.h"
@@ -13,53 +14,24 @@
 #include "services/planner/adapter/planner_node.h"
 #include "services/planner/planner_config.h"
 
-namespace {
-
-struct Flags {
-  std::string config_file;
-  std::string site;
-  int domain = 0;
-  std::string interface_address;
-  std::string log_level = "info";
-  bool print_config = false;
-  bool help_config = false;
-  bool print_tree = false;
-  bool dot = false;
-  std::vector<std::string> overrides;      // from the dedicated flags (--team)
-  std::vector<std::string> set_overrides;  // from --set (kept apart: CLI11 assigns this vector whole)
-};
-
-}  // namespace
-
 int main(int argc, char** argv) {
   ssl::ShutdownSignal shutdown;  // before any thread exists
-  Flags flags;
+  ssl::service::CommonFlags flags;
+  std::string interface_address;
+  bool print_tree = false;
+  bool dot = false;
   CLI::App app{"planner: one team's behaviour tree, world.state + referee.state -> robot.commands", "planner"};
-  app.add_option("--config", flags.config_file, "YAML file laid over the defaults and the site (only the keys it changes)");
-  app.add_option("--site", flags.site, ssl::service::kSiteHelp);
-  app.add_option("--domain", flags.domain, "DDS domain id")->check(CLI::Range(0, 232));
-  app.add_option("--interface", flags.interface_address,
+  ssl::service::add_common_flags(app, flags, {.help_config = true, .set_example = "planner.limits.max_speed=2.5"});
+  app.add_option("--interface", interface_address,
                  "multicast interface address (accepted for uniformity; the planner uses DDS only)");
-  app.add_option("--log-level", flags.log_level, "trace, debug, info, warn, error, critical or off")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
-  app.add_option_function<std::string>(
-         "--team", [&flags](const std::string& team) { flags.overrides.push_back("team=" + team); },
-         "our colour: blue or yellow")
-      ->check(CLI::IsMember({"blue", "yellow"}));
-  app.add_option("--set", flags.set_overrides, "override any config key: --set planner.limits.max_speed=2.5")
-      ->take_all();
-  app.add_flag("--print-config", flags.print_config, "print the effective config and exit");
-  app.add_flag("--help-config", flags.help_config, "describe every config key and exit");
-  app.add_flag("--print-tree", flags.print_tree, "print the behaviour tree (ASCII) and exit");
-  app.add_flag("--dot", flags.dot, "with --print-tree: print the tree as Graphviz DOT")->needs("--print-tree");
+  ssl::service::add_key_flag(app, flags, "--team", "team", "our colour: blue or yellow", {"blue", "yellow"});
+  app.add_flag("--print-tree", print_tree, "print the behaviour tree (ASCII) and exit");
+  app.add_flag("--dot", dot, "with --print-tree: print the tree as Graphviz DOT")->needs("--print-tree");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
   }
-
-  // --set first, so that --team wins over a --set of the same key.
-  flags.set_overrides.insert(flags.set_overrides.end(), flags.overrides.begin(), flags.overrides.end());
 
   spdlog::set_default_logger(spdlog::default_logger()->clone("planner"));
   spdlog::set_level(spdlog::level::from_str(flags.log_level));
@@ -74,7 +46,7 @@ int main(int argc, char** argv) {
     logger->critical("{}", setup.error().message);
     return 1;
   }
-  auto config = ssl::planner::load_planner_config(setup->config_files, flags.set_overrides);
+  auto config = ssl::planner::load_planner_config(setup->config_files, flags.overrides());
   if (!config) {
     logger->critical("{}", config.error().message);
     return 1;
@@ -83,9 +55,9 @@ int main(int argc, char** argv) {
     std::cout << ssl::planner::planner_config_yaml(*config);
     return 0;
   }
-  if (flags.print_tree) {
+  if (print_tree) {
     const ssl::planner::Planner planner(config->core);
-    std::cout << (flags.dot ? planner.tree_dot() : planner.tree_ascii());
+    std::cout << (dot ? planner.tree_dot() : planner.tree_ascii());
     return 0;
   }
 

@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 
+#include "libs/service/flags.h"
 #include "libs/service/setup.h"
 #include "libs/common/shutdown.h"
 #include "libs/dds/participant.h"
@@ -24,56 +25,26 @@
 #include "services/referee_gateway/builtin/profile.h"
 #include "services/referee_gateway/referee_gateway_config.h"
 
-namespace {
-
-struct Flags {
-  std::string config_file;
-  std::string site;
-  int domain = 0;
-  std::string log_level = "info";
-  std::string profile;
-  bool print_config = false;
-  std::vector<std::string> overrides;  // from the named flags, in command-line order
-  std::vector<std::string> set;        // from --set; CLI11 assigns this vector whole, so it is kept apart
-};
-
-void add_override(CLI::App& app, const std::string& flag, const std::string& key, const std::string& help,
-                  std::vector<std::string>& overrides) {
-  app.add_option_function<std::string>(
-      flag, [&overrides, key](const std::string& value) { overrides.push_back(key + "=" + value); }, help);
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   ssl::ShutdownSignal shutdown;  // before any thread exists
-  Flags flags;
+  ssl::service::CommonFlags flags;
+  std::string profile_flag;
   CLI::App app{
       "referee_gateway: SSL Game Controller (or our built-in referee's) packets -> referee.state and "
       "referee.event (DDS)",
       "referee_gateway"};
-  app.add_option("--config", flags.config_file, "YAML file laid over the defaults and the site (only the keys it changes)");
-  app.add_option("--site", flags.site, ssl::service::kSiteHelp);
-  app.add_option("--domain", flags.domain, "DDS domain id")->check(CLI::Range(0, 232));
-  app.add_option("--log-level", flags.log_level, "trace, debug, info, warn, error, critical or off")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
-  add_override(app, "--interface", "network.interface", "multicast interface address of the referee network",
-               flags.overrides);
-  add_override(app, "--source", "source", "gc (a Game Controller) or builtin (our own referee)",
-               flags.overrides);
-  add_override(app, "--referee-port", "network.referee_port",
-               "referee multicast port (group 224.5.23.1, default 10003)", flags.overrides);
-  app.add_option("--profile", flags.profile,
-                 "built-in referee profile: arcade, strict_ai or a file (builtin only)");
-  app.add_option("--set", flags.set, "override any config key: --set heartbeat_period=0.5")->take_all();
-  app.add_flag("--print-config", flags.print_config, "print the effective config and exit");
+  ssl::service::add_common_flags(app, flags, {.set_example = "heartbeat_period=0.5"});
+  ssl::service::add_key_flag(app, flags, "--interface", "network.interface",
+                             "multicast interface address of the referee network");
+  ssl::service::add_key_flag(app, flags, "--source", "source", "gc (a Game Controller) or builtin (our own referee)");
+  ssl::service::add_key_flag(app, flags, "--referee-port", "network.referee_port",
+                             "referee multicast port (group 224.5.23.1, default 10003)");
+  app.add_option("--profile", profile_flag, "built-in referee profile: arcade, strict_ai or a file (builtin only)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
   }
-
-  flags.overrides.insert(flags.overrides.end(), flags.set.begin(), flags.set.end());
 
   auto logger = spdlog::default_logger()->clone("referee_gateway");
   logger->set_level(spdlog::level::from_str(flags.log_level));
@@ -84,17 +55,17 @@ int main(int argc, char** argv) {
     logger->critical("{}", setup.error().message);
     return 1;
   }
-  auto config = ssl::referee::load_referee_gateway_config(setup->config_files, flags.overrides);
+  auto config = ssl::referee::load_referee_gateway_config(setup->config_files, flags.overrides());
   if (!config) {
     logger->critical("{}", config.error().message);
     return 1;
   }
   const bool builtin = config->source == ssl::referee::SourceKind::kBuiltin;
-  if (!flags.profile.empty() && !builtin) {
+  if (!profile_flag.empty() && !builtin) {
     logger->critical("--profile selects a built-in referee profile and needs --source builtin");
     return 2;
   }
-  if (!flags.profile.empty()) config->builtin.profile = flags.profile;
+  if (!profile_flag.empty()) config->builtin.profile = profile_flag;
   std::optional<ssl::referee::RefereeProfile> profile;
   if (builtin) {
     auto loaded = ssl::referee::load_referee_profile(config->builtin.profile);

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "libs/service/flags.h"
 #include "libs/service/setup.h"
 #include "libs/common/shutdown.h"
 #include "libs/dds/participant.h"
@@ -15,28 +16,12 @@
 
 int main(int argc, char** argv) {
   ssl::ShutdownSignal shutdown;  // before any thread exists
-  std::string config_file;
-  std::string site;
-  int domain = 0;
+  ssl::service::CommonFlags flags;
   std::string interface_address;
-  std::string log_level = "info";
-  bool print_config = false;
-  std::vector<std::string> overrides;
-
   CLI::App app{"world_model: filtered ball and robots in the team frame (world.state)", "world_model"};
-  app.add_option("--config", config_file, "YAML file laid over the defaults and the site (only the keys it changes)");
-  app.add_option("--site", site, ssl::service::kSiteHelp);
-  app.add_option("--domain", domain, "DDS domain id")->check(CLI::Range(0, 232));
+  ssl::service::add_common_flags(app, flags, {.set_example = "filter.ball.position_stddev=0.005"});
   app.add_option("--interface", interface_address, "multicast interface address (accepted for uniformity)");
-  app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
-  app.add_option_function<std::string>(
-         "--team", [&overrides](const std::string& team) { overrides.push_back("team=" + team); },
-         "our colour: blue or yellow")
-      ->check(CLI::IsMember({"blue", "yellow"}));
-  app.add_option("--set", overrides, "override any config key: --set filter.ball.position_stddev=0.005")
-      ->take_all();
-  app.add_flag("--print-config", print_config, "print the effective config and exit");
+  ssl::service::add_key_flag(app, flags, "--team", "team", "our colour: blue or yellow", {"blue", "yellow"});
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -44,26 +29,26 @@ int main(int argc, char** argv) {
   }
 
   auto logger = spdlog::default_logger()->clone("world_model");
-  logger->set_level(spdlog::level::from_str(log_level));
+  logger->set_level(spdlog::level::from_str(flags.log_level));
 
-  auto setup = ssl::service::prepare("world_model", site, config_file);
+  auto setup = ssl::service::prepare("world_model", flags.site, flags.config_file);
   if (!setup) {
     logger->critical("{}", setup.error().message);
     return 1;
   }
-  auto config = ssl::wm::load_world_model_config(setup->config_files, overrides);
+  auto config = ssl::wm::load_world_model_config(setup->config_files, flags.overrides());
   if (!config) {
     logger->critical("{}", config.error().message);
     return 1;
   }
-  if (print_config) {
+  if (flags.print_config) {
     std::cout << ssl::wm::world_model_config_yaml(*config);
     return 0;
   }
 
   const std::string team(ssl::to_string(config->team));
   logger->info("{}", ssl::service::describe(*setup));
-  auto participant = ssl::dds::Participant::create({.domain_id = domain, .name = "world_model/" + team, .discovery = setup->discovery});
+  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "world_model/" + team, .discovery = setup->discovery});
   if (!participant) {
     logger->critical("{}", participant.error().message);
     return 1;
@@ -74,7 +59,7 @@ int main(int argc, char** argv) {
     logger->critical("{}", node.error().message);
     return 1;
   }
-  logger->info("team {}, domain {}, publishing world.state {}", team, domain,
+  logger->info("team {}, domain {}, publishing world.state {}", team, flags.domain,
                config->publish_mode == ssl::wm::PublishMode::kOnFrame ? "after every camera frame"
                                                                       : "at a fixed rate");
   node->run(shutdown);
