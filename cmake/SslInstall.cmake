@@ -24,8 +24,9 @@ install(DIRECTORY ${CMAKE_SOURCE_DIR}/deploy/config ${CMAKE_SOURCE_DIR}/deploy/q
         DESTINATION ${SSL_INSTALL_CONFDIR})
 install(FILES ${CMAKE_SOURCE_DIR}/README.md DESTINATION ${SSL_INSTALL_DOCDIR})
 
-# The units name absolute paths of the install they belong to: written at install time, so that an install
-# under any prefix gets units for that prefix.
+# The units name absolute paths of the install they belong to: written at install time, straight into the
+# install (DESTDIR included, as CPack stages it), so that an install under any prefix gets units for that
+# prefix and installs of one build into several prefixes at once do not share a file.
 set(SSL_UNIT_TEMPLATES
     ssl-discovery.service ssl-simulator.service ssl-vision-gateway.service ssl-referee-gateway.service
     ssl-robot-link@.service ssl-world-model@.service ssl-planner@.service ssl-field.target ssl-team@.target)
@@ -36,14 +37,14 @@ install(CODE "
   set(SSL_DOC_DIR \"\${root}/${SSL_INSTALL_DOCDIR}\")
   set(SSL_SERVICE_USER \"${SSL_SERVICE_USER}\")
   set(FASTDDS \"${SSL_FASTDDS_TOOL}\")
-  foreach(unit ${SSL_UNIT_TEMPLATES} ssl-stack.env)
-    configure_file(\"${CMAKE_SOURCE_DIR}/deploy/systemd/\${unit}.in\" \"${CMAKE_BINARY_DIR}/install-units/\${unit}\" @ONLY)
+  set(staged \"\$ENV{DESTDIR}\${root}\")
+  foreach(unit ${SSL_UNIT_TEMPLATES})
+    message(STATUS \"Installing: \${staged}/${SSL_INSTALL_UNITDIR}/\${unit}\")
+    configure_file(\"${CMAKE_SOURCE_DIR}/deploy/systemd/\${unit}.in\" \"\${staged}/${SSL_INSTALL_UNITDIR}/\${unit}\" @ONLY)
   endforeach()
+  message(STATUS \"Installing: \${staged}/${SSL_INSTALL_CONFDIR}/ssl-stack.env\")
+  configure_file(\"${CMAKE_SOURCE_DIR}/deploy/systemd/ssl-stack.env.in\" \"\${staged}/${SSL_INSTALL_CONFDIR}/ssl-stack.env\" @ONLY)
 ")
-foreach(unit ${SSL_UNIT_TEMPLATES})
-  install(FILES ${CMAKE_BINARY_DIR}/install-units/${unit} DESTINATION ${SSL_INSTALL_UNITDIR})
-endforeach()
-install(FILES ${CMAKE_BINARY_DIR}/install-units/ssl-stack.env DESTINATION ${SSL_INSTALL_CONFDIR})
 
 # The Debian package.
 set(CPACK_GENERATOR DEB)

@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -233,7 +234,10 @@ class Truth {
 };
 
 // When one team's robot.commands samples reach A (robot_link's host): the planner across the network, as
-// the field PC sees it (wall clock, ns, at reading).
+// the field PC sees it. Each arrival is kept with the time it was read here and the receive time of the
+// camera frame its world state came from (its VisionStamp, stamped by vision_gateway on A): a command
+// computed from vision received after an event can only have been planned after it, however late this
+// test reads it.
 class Arrivals {
  public:
   explicit Arrivals(ChildProcess echo) : echo_(std::move(echo)), reader_([this] { read(); }) {}
@@ -242,38 +246,47 @@ class Arrivals {
     echo_.signal(SIGTERM);
     reader_.join();
   }
-  /// The first arrival after `t`, if any.
-  std::optional<std::int64_t> first_after(std::int64_t t) const {
+  /// When the first command planned from vision received after `t` was read, if any.
+  std::optional<std::int64_t> first_planned_after(std::int64_t t) const {
     std::lock_guard lock(mutex_);
-    const auto it = std::upper_bound(times_.begin(), times_.end(), t);
-    if (it == times_.end()) return std::nullopt;
-    return *it;
+    for (const Arrival& a : arrivals_) {
+      if (a.vision > t) return a.read;
+    }
+    return std::nullopt;
   }
-  /// The longest time without an arrival between `from` and `to` (ns).
+  /// The longest time without an arrival between `from` and `to` (ns, read times).
   std::int64_t longest_gap(std::int64_t from, std::int64_t to) const {
     std::lock_guard lock(mutex_);
     std::int64_t last = from;
     std::int64_t gap = 0;
-    for (std::int64_t t : times_) {
-      if (t <= from || t > to) continue;
-      gap = std::max(gap, t - last);
-      last = t;
+    for (const Arrival& a : arrivals_) {
+      if (a.read <= from || a.read > to) continue;
+      gap = std::max(gap, a.read - last);
+      last = a.read;
     }
     return std::max(gap, to - last);
   }
 
  private:
+  struct Arrival {
+    std::int64_t read;    // when this test read it
+    std::int64_t vision;  // receive time of the camera frame it was planned from
+  };
   void read() {
     while (!stop_) {
-      if (!echo_.read_line(500ms)) continue;
+      auto line = echo_.read_line(500ms);
+      if (!line) continue;
+      const std::int64_t read_at = now_ns();
+      auto sample = nlohmann::json::parse(*line, nullptr, false);
+      if (!sample.is_object() || !sample.contains("stamp")) continue;
       std::lock_guard lock(mutex_);
-      times_.push_back(now_ns());
+      arrivals_.push_back({read_at, sample["stamp"].value("receive_unix_ns", std::int64_t{0})});
     }
   }
   ChildProcess echo_;
   std::atomic<bool> stop_{false};
   mutable std::mutex mutex_;
-  std::vector<std::int64_t> times_;
+  std::vector<Arrival> arrivals_;
   std::thread reader_;
 };
 
@@ -297,7 +310,10 @@ TEST_P(MultiHost, AMatchAcrossFourHostsSurvivesACutLinkAndAKilledPlanner) {
   if (!net) GTEST_SKIP() << "cannot make the network namespaces: " << net.error().message;
   const std::string domain = std::to_string(run.domain);
   const fs::path prefix = fs::temp_directory_path() / ("ssl_multihost_" + std::to_string(::getpid()));
-  ASSERT_TRUE(install_build(prefix));
+  const std::unique_ptr<const fs::path, void (*)(const fs::path*)> remove_prefix(
+      &prefix, [](const fs::path* path) { fs::remove_all(*path); });
+  const Status installed = install_build(prefix);
+  ASSERT_TRUE(installed) << installed.error().message;
   const fs::path installed_bin = prefix / "opt/ssl-stack/bin";
 
   // The site: sim; or, where the bridge drops multicast, a site of the install like sim whose discovery is
@@ -377,7 +393,7 @@ TEST_P(MultiHost, AMatchAcrossFourHostsSurvivesACutLinkAndAKilledPlanner) {
   std::optional<std::int64_t> resumed;
   for (int i = 0; i < 60 && !resumed; ++i) {
     std::this_thread::sleep_for(100ms);  // polls the observer
-    resumed = blue_commands.first_after(restored);
+    resumed = blue_commands.first_planned_after(restored);
   }
   ASSERT_TRUE(resumed) << "blue's commands did not reach A within 6 s of the link coming back";
   const double resume_s = static_cast<double>(*resumed - restored) * 1e-9;
@@ -395,7 +411,7 @@ TEST_P(MultiHost, AMatchAcrossFourHostsSurvivesACutLinkAndAKilledPlanner) {
   std::optional<std::int64_t> back;
   for (int i = 0; i < 80 && !back; ++i) {
     std::this_thread::sleep_for(100ms);  // polls the observer
-    back = blue_commands.first_after(restarted);
+    back = blue_commands.first_planned_after(restarted);
   }
   ASSERT_TRUE(back) << "blue's planner did not command again after its restart";
   const double back_s = static_cast<double>(*back - restarted) * 1e-9;
@@ -414,7 +430,6 @@ TEST_P(MultiHost, AMatchAcrossFourHostsSurvivesACutLinkAndAKilledPlanner) {
   for (ChildProcess& child : services) (void)child.wait(15s);
   (void)blue_planner->wait(15s);
   if (discovery_server) discovery_server->signal(SIGTERM);
-  fs::remove_all(prefix);
 }
 
 INSTANTIATE_TEST_SUITE_P(Discovery, MultiHost,
