@@ -164,6 +164,19 @@ Result<fdds::Topic*> find_or_create_topic(detail::ParticipantState& state, std::
   return topic;
 }
 
+// The transports: shared memory (unless `shared_memory` is false) and UDPv4. Our own UDP descriptor so that a
+// peer without a port is tried on the well-known ports of as many participants as the site says (Fast
+// DDS's default is 4; a field PC runs more).
+void apply_transports(const ParticipantOptions& options, fdds::DomainParticipantQos& qos) {
+  qos.transport().use_builtin_transports = false;
+  if (options.shared_memory) {
+    qos.transport().user_transports.push_back(std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+  }
+  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+  udp->maxInitialPeersRange = options.discovery.peer_participants;
+  qos.transport().user_transports.push_back(udp);
+}
+
 // The site's discovery on top of the profile's participant QoS (libs/dds/discovery.h).
 Status apply_discovery(const DiscoveryConfig& discovery, fdds::DomainParticipantQos& qos) {
   auto& builtin = qos.wire_protocol().builtin;
@@ -190,14 +203,6 @@ Status apply_discovery(const DiscoveryConfig& discovery, fdds::DomainParticipant
         }
         builtin.initialPeersList.push_back(locator);
       }
-      // A peer without a port is tried on the well-known ports of its first maxInitialPeersRange
-      // participants (4 by default; a field PC runs more): our own UDP transport, beside shared memory.
-      auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-      udp->maxInitialPeersRange = discovery.peer_participants;
-      qos.transport().use_builtin_transports = false;
-      qos.transport().user_transports.push_back(
-          std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
-      qos.transport().user_transports.push_back(udp);
       return Status::success();
     }
   }
@@ -233,6 +238,7 @@ Result<Participant> Participant::create(const ParticipantOptions& options) {
   }
   qos.name(options.name);
   if (Status applied = apply_discovery(options.discovery, qos); !applied) return applied.error();
+  apply_transports(options, qos);
   auto state = std::make_shared<detail::ParticipantState>();
   state->domain_id = options.domain_id;
   state->qos_file = qos_file;

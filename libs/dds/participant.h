@@ -32,6 +32,10 @@ struct ParticipantOptions {
   std::string qos_file;     // Fast DDS XML profiles; empty: find_qos_file()
   std::string name = "ssl"; // participant name shown to discovery tools, e.g. "world_model/blue"
   DiscoveryConfig discovery;  // how it finds the others (the site's deploy/.../dds.yaml)
+  // Shared memory with the participants of this host. Fast DDS creates its segments writable by their
+  // owner only, so a process of another user than the services' (an operator's sslctl beside the units'
+  // ssl-stack user) cannot use it and must not announce it: false then, UDP only.
+  bool shared_memory = true;
 };
 
 /// Finds deploy/qos/profiles.xml: $SSL_QOS_FILE, else as ssl::find_deploy_file does.

@@ -276,6 +276,29 @@ TEST(ServiceManager, WithoutANotifySocketTheServicesRunAsBefore) {
   EXPECT_TRUE(reports.contains("vision_gateway"));
 }
 
+TEST(ServiceManager, AnOperatorsSslctlReachesServicesRunningAsTheUnitsUser) {
+  // The units run the services as their own user; an operator runs sslctl as another. Fast DDS's shared-
+  // memory segments are writable by their owner only, so sslctl talks UDP (ParticipantOptions::
+  // shared_memory). Two ids of no account, via setpriv: neither may write the other's files.
+  if (::geteuid() != 0) GTEST_SKIP() << "running processes as other users needs root";
+  if (shell("command -v setpriv").status != 0) GTEST_SKIP() << "setpriv (util-linux) is not installed";
+  const auto as_user = [](int uid, const fs::path& program, std::vector<std::string> args) {
+    std::vector<std::string> argv{"--reuid=" + std::to_string(uid), "--regid=" + std::to_string(uid), "--clear-groups",
+                                  program.string()};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return ChildProcess::start("/usr/bin/setpriv", argv);
+  };
+  auto service = as_user(4242, bin_dir() / "vision_gateway", {"--domain", "165", "--vision-port", "42171"});
+  ASSERT_TRUE(service) << service.error().message;
+  auto health = as_user(4243, bin_dir() / "sslctl", {"health", "--json", "--listen", "4", "--domain", "165"});
+  ASSERT_TRUE(health) << health.error().message;
+  std::string reports;
+  while (auto line = health->read_line(15s)) reports += *line + "\n";
+  service->signal(SIGTERM);
+  EXPECT_EQ(service->wait(15s), 0) << service->drain_stderr();
+  EXPECT_THAT(reports, HasSubstr("\"service\":\"vision_gateway\"")) << health->drain_stderr();
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // cmake --install
 

@@ -109,13 +109,18 @@ TEST(DdsTwoProcessTest, LateJoinerReceivesTheLastRefereeState) {
 }
 
 TEST(DdsTwoProcessTest, SigtermLeavesNoSharedMemorySegmentsBehind) {
-  auto writer = sslctl({"topic", "pub", "system.estop", "--domain", "153", "--linger", "-1", R"({"engaged": true})"});
-  ASSERT_EQ(writer.read_line(kTimeout), "published 1") << writer.drain_stderr();
-  const auto segments = mapped_shm_files(writer.pid());
-  ASSERT_FALSE(segments.empty()) << "expected the writer to use Fast DDS shared memory";
+  // A service (sslctl talks UDP only: see dds::ParticipantOptions::shared_memory).
+  auto started = ChildProcess::start(bin_dir() / "vision_gateway", {"--domain", "153", "--vision-port", "42153"});
+  ASSERT_TRUE(started) << started.error().message;
+  ChildProcess& service = *started;
+  std::optional<std::string> line;
+  while ((line = service.read_line(kTimeout)) && line->find("listening for vision") == std::string::npos) {}
+  ASSERT_TRUE(line) << service.drain_stderr();
+  const auto segments = mapped_shm_files(service.pid());
+  ASSERT_FALSE(segments.empty()) << "expected the service to use Fast DDS shared memory";
 
-  writer.signal(SIGTERM);
-  ASSERT_EQ(writer.wait(kTimeout), 0) << writer.drain_stderr();
+  service.signal(SIGTERM);
+  ASSERT_EQ(service.wait(kTimeout), 0) << service.drain_stderr();
   for (const auto& segment : segments) EXPECT_FALSE(std::filesystem::exists(segment)) << segment << " was left behind";
 }
 
