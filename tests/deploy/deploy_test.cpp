@@ -22,7 +22,6 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
-#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -39,8 +38,6 @@ using namespace std::chrono_literals;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-const fs::path kBuildDir = SSL_BUILD_DIR;
-const fs::path kSourceDir = SSL_SOURCE_DIR;
 
 const std::vector<std::string> kExecutables{"simulator",   "vision_gateway", "referee_gateway", "world_model",
                                             "planner",     "robot_link",     "sslctl"};
@@ -60,23 +57,6 @@ struct TempDir {
   ~TempDir() { fs::remove_all(path); }
   fs::path path;
 };
-
-struct ShellRun {
-  int status = -1;
-  std::string output;
-};
-
-// Runs a shell command line; its exit status and output (stdout and stderr).
-ShellRun shell(const std::string& command) {
-  ShellRun run;
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return run;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) run.output += buffer.data();
-  const int status = ::pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path);
@@ -554,7 +534,7 @@ TEST(Discovery, ClientsOfADiscoveryServerFindEachOtherThroughItAndOnlyThroughIt)
 TEST(Package, TheDebDeclaresItsDependenciesAndInstallsWithApt) {
   if (shell("command -v cpack && command -v dpkg-deb").status != 0) GTEST_SKIP() << "cpack or dpkg-deb is missing";
   TempDir out;
-  const ShellRun packed = shell("cd '" + kBuildDir.string() + "' && cpack -G DEB -B '" + out.path.string() + "'");
+  const ShellRun packed = shell("cd '" + bin_dir().parent_path().string() + "' && cpack -G DEB -B '" + out.path.string() + "'");
   ASSERT_EQ(packed.status, 0) << packed.output;
   std::optional<fs::path> deb;
   for (const auto& entry : fs::directory_iterator(out.path)) {

@@ -26,6 +26,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -95,8 +96,8 @@ class Network {
     for (const std::string& rule : {std::string("add table bridge ssl"),
                                     std::string("add chain bridge ssl forward { type filter hook forward priority 0; }"),
                                     std::string("add rule bridge ssl forward meta pkttype multicast drop")}) {
-      const std::string command = NetNamespace::ip().string() + " netns exec " + switch_name_ + " nft '" + rule + "' 2>&1";
-      if (std::system(command.c_str()) != 0) return Error{"nft " + rule + " failed (is nftables installed?)"};
+      const ShellRun run = shell(NetNamespace::ip().string() + " netns exec " + switch_name_ + " nft '" + rule + "'");
+      if (run.status != 0) return Error{"nft " + rule + " failed (is nftables installed?): " + run.output};
     }
     return Status::success();
   }
@@ -112,16 +113,40 @@ class Network {
   std::vector<NetNamespace> hosts_;
 };
 
-// The simulator's noise-free vision, read on A (where the link cuts do not reach): every robot's position
-// at each camera frame's capture time (wall clock, ns).
-class Truth {
+// `sslctl topic echo` read on its own thread until destroyed: each JSON object goes to `on_sample` with the
+// time it was read (wall clock, ns).
+class EchoReader {
  public:
-  explicit Truth(ChildProcess echo) : echo_(std::move(echo)), reader_([this] { read(); }) {}
-  ~Truth() {
+  EchoReader(ChildProcess echo, std::function<void(const nlohmann::json&, std::int64_t)> on_sample)
+      : echo_(std::move(echo)), on_sample_(std::move(on_sample)), reader_([this] { read(); }) {}
+  ~EchoReader() {
     stop_ = true;
     echo_.signal(SIGTERM);
     reader_.join();
   }
+
+ private:
+  void read() {
+    while (!stop_) {
+      auto line = echo_.read_line(500ms);
+      if (!line) continue;
+      const std::int64_t read_at = now_ns();
+      auto sample = nlohmann::json::parse(*line, nullptr, false);
+      if (sample.is_object()) on_sample_(sample, read_at);
+    }
+  }
+  ChildProcess echo_;
+  std::function<void(const nlohmann::json&, std::int64_t)> on_sample_;
+  std::atomic<bool> stop_{false};
+  std::thread reader_;
+};
+
+// The simulator's noise-free vision, read on A (where the link cuts do not reach): every robot's position
+// at each camera frame's capture time (wall clock, ns).
+class Truth {
+ public:
+  explicit Truth(ChildProcess echo)
+      : reader_(std::move(echo), [this](const nlohmann::json& frame, std::int64_t) { add(frame); }) {}
 
   /// The largest distance any robot of `team` ("blue", "yellow") went between `from` and `to` (ns).
   double moved(const std::string& team, std::int64_t from, std::int64_t to) const {
@@ -208,29 +233,21 @@ class Truth {
     double x;
     double y;
   };
-  void read() {
-    while (!stop_) {
-      auto line = echo_.read_line(500ms);
-      if (!line) continue;
-      auto frame = nlohmann::json::parse(*line, nullptr, false);
-      if (!frame.is_object()) continue;
-      std::lock_guard lock(mutex_);
-      ++frames_;
-      const std::int64_t t = frame.value("capture_unix_ns", std::int64_t{0});
-      for (const char* team : {"blue", "yellow"}) {
-        for (const auto& robot : frame[std::string("robots_") + team]) {
-          tracks_[{team, robot.value("robot_id", 0u)}].push_back({t, robot.value("x", 0.0), robot.value("y", 0.0)});
-        }
+  void add(const nlohmann::json& frame) {
+    std::lock_guard lock(mutex_);
+    ++frames_;
+    const std::int64_t t = frame.value("capture_unix_ns", std::int64_t{0});
+    for (const char* team : {"blue", "yellow"}) {
+      for (const auto& robot : frame[std::string("robots_") + team]) {
+        tracks_[{team, robot.value("robot_id", 0u)}].push_back({t, robot.value("x", 0.0), robot.value("y", 0.0)});
       }
     }
   }
 
-  ChildProcess echo_;
-  std::atomic<bool> stop_{false};
   mutable std::mutex mutex_;
   std::map<std::pair<std::string, std::uint32_t>, std::vector<Sample>> tracks_;
   std::size_t frames_ = 0;
-  std::thread reader_;
+  EchoReader reader_;  // last: it starts after the state above exists and stops before it goes
 };
 
 // When one team's robot.commands samples reach A (robot_link's host): the planner across the network, as
@@ -240,12 +257,8 @@ class Truth {
 // test reads it.
 class Arrivals {
  public:
-  explicit Arrivals(ChildProcess echo) : echo_(std::move(echo)), reader_([this] { read(); }) {}
-  ~Arrivals() {
-    stop_ = true;
-    echo_.signal(SIGTERM);
-    reader_.join();
-  }
+  explicit Arrivals(ChildProcess echo)
+      : reader_(std::move(echo), [this](const nlohmann::json& sample, std::int64_t read_at) { add(sample, read_at); }) {}
   /// When the first command planned from vision received after `t` was read, if any.
   std::optional<std::int64_t> first_planned_after(std::int64_t t) const {
     std::lock_guard lock(mutex_);
@@ -272,22 +285,14 @@ class Arrivals {
     std::int64_t read;    // when this test read it
     std::int64_t vision;  // receive time of the camera frame it was planned from
   };
-  void read() {
-    while (!stop_) {
-      auto line = echo_.read_line(500ms);
-      if (!line) continue;
-      const std::int64_t read_at = now_ns();
-      auto sample = nlohmann::json::parse(*line, nullptr, false);
-      if (!sample.is_object() || !sample.contains("stamp")) continue;
-      std::lock_guard lock(mutex_);
-      arrivals_.push_back({read_at, sample["stamp"].value("receive_unix_ns", std::int64_t{0})});
-    }
+  void add(const nlohmann::json& sample, std::int64_t read_at) {
+    if (!sample.contains("stamp")) return;
+    std::lock_guard lock(mutex_);
+    arrivals_.push_back({read_at, sample["stamp"].value("receive_unix_ns", std::int64_t{0})});
   }
-  ChildProcess echo_;
-  std::atomic<bool> stop_{false};
   mutable std::mutex mutex_;
   std::vector<Arrival> arrivals_;
-  std::thread reader_;
+  EchoReader reader_;  // last: it starts after the state above exists and stops before it goes
 };
 
 // How the hosts find each other: the site's dds.yaml (libs/dds/discovery.h).

@@ -1,5 +1,7 @@
 #include "tests/support/netns.h"
 
+#include "tests/support/process.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,17 +17,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Runs argv, collecting stdout and stderr; the exit status.
-int run(const std::vector<std::string>& argv, std::string& output) {
-  std::string command;
-  for (const std::string& arg : argv) command += "'" + arg + "' ";
-  command += "2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return -1;
-  std::array<char, 512> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) output += buffer.data();
-  const int status = ::pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+// `ip args...` as one shell command line (the arguments quoted).
+std::string ip_command(const std::vector<std::string>& args) {
+  std::string command = "'" + NetNamespace::ip().string() + "'";
+  for (const std::string& arg : args) command += " '" + arg + "'";
+  return command;
 }
 
 }  // namespace
@@ -38,21 +34,15 @@ fs::path NetNamespace::ip() {
 }
 
 Status NetNamespace::run_ip(const std::vector<std::string>& args) {
-  std::vector<std::string> argv{ip().string()};
-  argv.insert(argv.end(), args.begin(), args.end());
-  std::string output;
-  if (run(argv, output) != 0) {
-    std::string joined;
-    for (const std::string& arg : argv) joined += arg + " ";
-    return Error{joined + "failed: " + output};
-  }
+  const std::string command = ip_command(args);
+  const ShellRun run = shell(command);
+  if (run.status != 0) return Error{command + " failed: " + run.output};
   return Status::success();
 }
 
 Result<NetNamespace> NetNamespace::create(std::string name) {
   if (::geteuid() != 0) return Error{"network namespaces need root (this test runs as uid " + std::to_string(::geteuid()) + ")"};
-  std::string ignored;
-  (void)run({ip().string(), "netns", "del", name}, ignored);
+  (void)shell(ip_command({"netns", "del", name}));
   if (Status added = run_ip({"netns", "add", name}); !added) return added.error();
   NetNamespace ns(std::move(name));
   for (const std::vector<std::string>& step : std::vector<std::vector<std::string>>{
@@ -66,8 +56,7 @@ Result<NetNamespace> NetNamespace::create(std::string name) {
 
 NetNamespace::~NetNamespace() {
   if (name_.empty()) return;
-  std::string ignored;
-  (void)run({ip().string(), "netns", "del", name_}, ignored);
+  (void)shell(ip_command({"netns", "del", name_}));
 }
 
 std::vector<std::string> NetNamespace::exec_args(const fs::path& program, const std::vector<std::string>& args) const {

@@ -21,16 +21,22 @@ fs::path bin_dir() {
   return fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "bin";
 }
 
-Status install_build(const fs::path& prefix) {
-  const fs::path build = bin_dir().parent_path();
-  const std::string command = "cmake --install '" + build.string() + "' --prefix '" + prefix.string() + "' 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return Error{"cannot run " + command};
-  std::string output;
-  char buffer[512];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
+ShellRun shell(const std::string& command) {
+  ShellRun run;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return run;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) run.output += buffer;
   const int status = ::pclose(pipe);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return Error{command + " failed:\n" + output};
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+Status install_build(const fs::path& prefix) {
+  const std::string command =
+      "cmake --install '" + bin_dir().parent_path().string() + "' --prefix '" + prefix.string() + "'";
+  const ShellRun run = shell(command);
+  if (run.status != 0) return Error{command + " failed:\n" + run.output};
   return Status::success();
 }
 

@@ -22,6 +22,14 @@ namespace ssl::testing {
 /// build/bin, found relative to the running test executable (build/tests/<test>).
 std::filesystem::path bin_dir();
 
+/// What a shell command line printed (stdout and stderr) and its exit status (-1 when it did not exit).
+struct ShellRun {
+  int status = -1;
+  std::string output;
+};
+/// Runs `command` with /bin/sh and waits for it.
+ShellRun shell(const std::string& command);
+
 /// `cmake --install` of this build under `prefix` (a match PC's tree: prefix/opt/ssl-stack/bin,
 /// prefix/etc/ssl-stack, prefix/lib/systemd/system); the error carries cmake's output.
 Status install_build(const std::filesystem::path& prefix);
