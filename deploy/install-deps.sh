@@ -23,6 +23,8 @@ packages=(
   iproute2 procps python3
   # multi-host tests: network namespaces joined by a bridge, multicast filtered on it
   nftables
+  # browser tests of the console: Debian's chromium driven by playwright-core (tests/browser, from npm)
+  chromium
 )
 
 missing=()
@@ -31,6 +33,8 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
+# Node.js and npm for the browser tests: any recent Node will do (machines often bring their own).
+command -v node >/dev/null && command -v npm >/dev/null || missing+=(nodejs npm)
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 echo "install-deps: installing ${missing[*]}"

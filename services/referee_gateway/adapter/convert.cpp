@@ -1346,3 +1346,104 @@ idl::referee::RefereeEvent to_idl(const RefereeEvent& event) {
 }
 
 }  // namespace ssl::referee
+
+// ---------------------------------------------------------------------------------------------------------
+// IDL -> core
+
+namespace ssl::referee {
+namespace {
+
+/// `value` as the core enum E when it is within [0, last], else E{} (the first enumerator).
+template <typename E>
+E enum_in_range(int value, E last) {
+  return value >= 0 && value <= static_cast<int>(last) ? static_cast<E>(value) : E{};
+}
+
+Vec2 from_idl(const idl::common::Vec2& v) { return {v.x(), v.y()}; }
+
+}  // namespace
+
+GameEvent from_idl(const idl::referee::GameEvent& event) {
+  GameEvent out;
+  out.id = event.id();
+  out.type = enum_in_range(static_cast<int>(event.type()), GameEventType::kMultiplePlacementFailures);
+  out.origins = event.origins();
+  if (event.created_unix_ns() != 0) out.created_referee = time::Timestamp::from_nanoseconds(event.created_unix_ns());
+  out.by_team = enum_in_range(static_cast<int>(event.by_team()), Team::kBlue);
+  if (event.has_by_bot()) out.by_bot = event.by_bot();
+  if (event.has_other_bot()) out.other_bot = event.other_bot();
+  if (event.has_location()) out.location = from_idl(event.location());
+  if (event.has_secondary_location()) out.secondary_location = from_idl(event.secondary_location());
+  if (event.has_value()) out.value = event.value();
+  out.text = event.text();
+  return out;
+}
+
+TeamInfo from_idl(const idl::referee::TeamInfo& team) {
+  TeamInfo out;
+  out.name = team.name();
+  out.score = team.score();
+  out.red_cards = team.red_cards();
+  for (double left : team.yellow_card_times_left()) out.yellow_card_times_left.push_back(time::duration_from_seconds(left));
+  out.yellow_cards = team.yellow_cards();
+  out.timeouts = team.timeouts();
+  out.timeout_time_left = time::duration_from_seconds(team.timeout_time_left());
+  out.goalkeeper = team.goalkeeper();
+  out.foul_counter = team.foul_counter();
+  out.ball_placement_failures = team.ball_placement_failures();
+  out.can_place_ball = team.can_place_ball();
+  out.max_allowed_bots = team.max_allowed_bots();
+  out.bot_substitution_intent = team.bot_substitution_intent();
+  out.ball_placement_failures_reached = team.ball_placement_failures_reached();
+  out.bot_substitution_allowed = team.bot_substitution_allowed();
+  out.bot_substitutions_left = team.bot_substitutions_left();
+  out.bot_substitution_time_left = time::duration_from_seconds(team.bot_substitution_time_left());
+  out.hull_color = enum_in_range(static_cast<int>(team.hull_color()), HullColor::kLight);
+  return out;
+}
+
+RefereeState from_idl(const idl::referee::RefereeState& state) {
+  RefereeState out;
+  out.source = state.source() == idl::referee::REFEREE_SOURCE_BUILTIN ? RefereeSource::kBuiltin
+                                                                       : RefereeSource::kGameController;
+  out.source_identifier = state.source_identifier();
+  out.match_type = enum_in_range(static_cast<int>(state.match_type()), MatchType::kFriendly);
+  out.packet_referee = time::Timestamp::from_nanoseconds(state.packet_unix_ns());
+  out.receive_wall = time::Timestamp::from_nanoseconds(state.receive_unix_ns());
+  out.stage = enum_in_range(static_cast<int>(state.stage()), Stage::kPostGame);
+  out.stage_time_left = time::duration_from_seconds(state.stage_time_left());
+  out.command = enum_in_range(static_cast<int>(state.command()), Command::kBallPlacementBlue);
+  out.command_counter = state.command_counter();
+  out.command_referee = time::Timestamp::from_nanoseconds(state.command_unix_ns());
+  out.yellow = from_idl(state.yellow());
+  out.blue = from_idl(state.blue());
+  if (state.has_designated_position()) out.designated_position = from_idl(state.designated_position());
+  if (state.has_blue_team_on_positive_half()) out.blue_team_on_positive_half = state.blue_team_on_positive_half();
+  if (state.has_next_command()) {
+    out.next_command = enum_in_range(static_cast<int>(state.next_command()), Command::kBallPlacementBlue);
+  }
+  for (const auto& event : state.game_events()) out.game_events.push_back(from_idl(event));
+  for (const auto& group : state.game_event_proposals()) {
+    GameEventProposal proposal;
+    proposal.id = group.id();
+    proposal.accepted = group.accepted();
+    for (const auto& event : group.events()) proposal.events.push_back(from_idl(event));
+    out.game_event_proposals.push_back(std::move(proposal));
+  }
+  if (state.has_current_action_time_remaining()) {
+    out.current_action_time_remaining = time::duration_from_seconds(state.current_action_time_remaining());
+  }
+  out.status_message = state.status_message();
+  return out;
+}
+
+RefereeEvent from_idl(const idl::referee::RefereeEvent& event) {
+  RefereeEvent out;
+  out.event = from_idl(event.event());
+  out.command = enum_in_range(static_cast<int>(event.command()), Command::kBallPlacementBlue);
+  out.command_counter = event.command_counter();
+  out.receive_wall = time::Timestamp::from_nanoseconds(event.receive_unix_ns());
+  return out;
+}
+
+}  // namespace ssl::referee

@@ -110,4 +110,11 @@ idl::referee::RefereeEvent to_idl(const RefereeEvent& event);
 idl::referee::GameEvent to_idl(const GameEvent& event);
 idl::referee::TeamInfo to_idl(const TeamInfo& team);
 
+/// The inverses of to_idl, for readers of referee.state and referee.event (the console, tools). Enumerators
+/// outside the core's range become the first one (HALT, unknown event, ...).
+RefereeState from_idl(const idl::referee::RefereeState& state);
+RefereeEvent from_idl(const idl::referee::RefereeEvent& event);
+GameEvent from_idl(const idl::referee::GameEvent& event);
+TeamInfo from_idl(const idl::referee::TeamInfo& team);
+
 }  // namespace ssl::referee

@@ -689,5 +689,48 @@ TEST(RefereeGatewayGameEvents, PenaltyKickFailed) {
                 .text = "keeper saved"});
 }
 
+TEST(RefereeGatewayIdl, FromIdlInvertsToIdl) {
+  RefereeState state;
+  state.source = RefereeSource::kBuiltin;
+  state.source_identifier = "builtin";
+  state.match_type = MatchType::kFriendly;
+  state.packet_referee = time::Timestamp::from_milliseconds(1'700'000'000'123);
+  state.receive_wall = time::Timestamp::from_milliseconds(1'700'000'000'125);
+  state.stage = Stage::kNormalSecondHalf;
+  state.stage_time_left = std::chrono::milliseconds(-1500);
+  state.command = Command::kBallPlacementBlue;
+  state.command_counter = 42;
+  state.command_referee = time::Timestamp::from_milliseconds(1'700'000'000'000);
+  state.yellow.name = "Y";
+  state.yellow.score = 3;
+  state.yellow.yellow_card_times_left = {std::chrono::milliseconds(90'000)};
+  state.yellow.hull_color = HullColor::kDark;
+  state.blue.name = "B";
+  state.blue.foul_counter = 2;
+  state.blue.timeout_time_left = std::chrono::seconds(300);
+  state.designated_position = Vec2(1.25, -2.5);
+  state.blue_team_on_positive_half = true;
+  state.next_command = Command::kDirectFreeBlue;
+  state.game_events = {GameEvent{.id = "e1", .type = T::kBotCrashUnique, .by_team = Team::kYellow, .by_bot = 4u,
+                                 .location = Vec2(0.5, 0.25), .value = 2.0}};
+  state.game_event_proposals = {GameEventProposal{.id = "p", .events = state.game_events, .accepted = true}};
+  state.current_action_time_remaining = std::chrono::milliseconds(2500);
+  state.status_message = "placing";
+  EXPECT_EQ(from_idl(to_idl(state)), state);
+
+  const RefereeEvent event{.event = state.game_events.front(), .command = Command::kStop, .command_counter = 7,
+                           .receive_wall = time::Timestamp::from_milliseconds(5)};
+  EXPECT_EQ(from_idl(to_idl(event)), event);
+}
+
+TEST(RefereeGatewayIdl, EnumeratorsOutOfRangeBecomeTheFirst) {
+  idl::referee::RefereeState state;
+  state.command(static_cast<idl::referee::Command>(99));
+  state.stage(static_cast<idl::referee::Stage>(-1));
+  const RefereeState converted = from_idl(state);
+  EXPECT_EQ(converted.command, Command::kHalt);
+  EXPECT_EQ(converted.stage, Stage::kNormalFirstHalfPre);
+}
+
 }  // namespace
 }  // namespace ssl::referee

@@ -410,3 +410,21 @@ TEST(RefereeGatewayNames, LeagueNamesRoundTrip) {
 
 }  // namespace
 }  // namespace ssl::referee
+
+namespace ssl::referee {
+namespace {
+
+TEST(RefereeGameEventKinds, FoulsAreTheRulesFoulsAndNothingElse) {
+  using T = GameEventType;
+  for (T foul : {T::kBotCrashUnique, T::kBotTooFastInStop, T::kAttackerDoubleTouchedBall, T::kDefenderInDefenseArea,
+                 T::kBotInterferedPlacement, T::kDefenderTooCloseToKickPoint, T::kBoundaryCrossing}) {
+    EXPECT_TRUE(is_foul(foul)) << to_string(foul);
+  }
+  for (T other : {T::kUnknown, T::kGoal, T::kBallLeftFieldTouchLine, T::kPlacementSucceeded, T::kNoProgressInGame,
+                  T::kMultipleFouls, T::kMultipleCards, T::kPossibleGoal, T::kAimlessKick}) {
+    EXPECT_FALSE(is_foul(other)) << to_string(other);
+  }
+}
+
+}  // namespace
+}  // namespace ssl::referee

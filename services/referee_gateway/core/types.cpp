@@ -155,6 +155,37 @@ std::string_view to_string(Command command) { return name_of(kCommandNames, comm
 std::string_view to_string(Stage stage) { return name_of(kStageNames, stage); }
 std::string_view to_string(GameEventType type) { return name_of(kGameEventNames, type); }
 
+bool is_foul(GameEventType type) {
+  using T = GameEventType;
+  switch (type) {
+    case T::kAttackerTooCloseToDefenseArea:
+    case T::kDefenderInDefenseArea:
+    case T::kDefenderInDefenseAreaPartially:
+    case T::kBoundaryCrossing:
+    case T::kKeeperHeldBall:
+    case T::kBotDribbledBallTooFar:
+    case T::kBotPushedBot:
+    case T::kBotPushedBotSkipped:
+    case T::kBotHeldBallDeliberately:
+    case T::kBotTippedOver:
+    case T::kBotDroppedParts:
+    case T::kAttackerTouchedBallInDefenseArea:
+    case T::kAttackerTouchedOpponentInDefenseArea:
+    case T::kAttackerTouchedOpponentInDefenseAreaSkipped:
+    case T::kBotKickedBallTooFast:
+    case T::kBotCrashUnique:
+    case T::kBotCrashUniqueSkipped:
+    case T::kBotCrashDrawn:
+    case T::kDefenderTooCloseToKickPoint:
+    case T::kBotTooFastInStop:
+    case T::kBotInterferedPlacement:
+    case T::kAttackerDoubleTouchedBall:
+      return true;
+    default:
+      return false;
+  }
+}
+
 std::optional<GameEventType> parse_game_event_type(std::string_view league_name) {
   for (std::size_t i = 0; i < kGameEventNames.size(); ++i) {
     if (kGameEventNames[i] == league_name) return static_cast<GameEventType>(i);

@@ -151,6 +151,9 @@ inline constexpr int kGameEventTypeCount = 48;  // kUnknown included
 std::string_view to_string(Command command);
 std::string_view to_string(Stage stage);
 std::string_view to_string(GameEventType type);
+/// A foul of the rules (section "Fouls"): stopping fouls, non-stopping fouls and their "skipped" variants
+/// (raised with advantage). Not fouls: ball out, goals, placements, no progress, cards, substitutions.
+bool is_foul(GameEventType type);
 /// The type whose league name is `league_name` (e.g. "BOT_DROPPED_PARTS"); nullopt for unknown names.
 std::optional<GameEventType> parse_game_event_type(std::string_view league_name);
 
