@@ -18,7 +18,7 @@ set(SSL_INSTALL_CONFDIR etc/ssl-stack)
 set(SSL_INSTALL_UNITDIR lib/systemd/system)
 set(SSL_INSTALL_DOCDIR opt/ssl-stack/share/doc)
 
-install(TARGETS simulator vision_gateway referee_gateway world_model planner robot_link sslctl
+install(TARGETS simulator vision_gateway referee_gateway world_model planner robot_link console sslctl
         RUNTIME DESTINATION ${SSL_INSTALL_BINDIR})
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/deploy/config ${CMAKE_SOURCE_DIR}/deploy/qos ${CMAKE_SOURCE_DIR}/deploy/sites
         DESTINATION ${SSL_INSTALL_CONFDIR})
@@ -29,7 +29,8 @@ install(FILES ${CMAKE_SOURCE_DIR}/README.md DESTINATION ${SSL_INSTALL_DOCDIR})
 # prefix and installs of one build into several prefixes at once do not share a file.
 set(SSL_UNIT_TEMPLATES
     ssl-discovery.service ssl-simulator.service ssl-vision-gateway.service ssl-referee-gateway.service
-    ssl-robot-link@.service ssl-world-model@.service ssl-planner@.service ssl-field.target ssl-team@.target)
+    ssl-robot-link@.service ssl-world-model@.service ssl-planner@.service ssl-console.service ssl-field.target
+    ssl-team@.target ssl-coach.target)
 install(CODE "
   string(REGEX REPLACE \"/+$\" \"\" root \"\${CMAKE_INSTALL_PREFIX}\")
   set(SSL_BIN_DIR \"\${root}/${SSL_INSTALL_BINDIR}\")

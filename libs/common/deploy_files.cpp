@@ -68,7 +68,7 @@ Result<std::string> find_site(std::string_view site) {
 }
 
 Result<std::vector<std::string>> config_layers(std::string_view service, std::string_view site,
-                                               const std::string& user_file) {
+                                               const std::string& user_file, const std::string& saved_file) {
   auto defaults = find_deploy_file("config/" + std::string(service) + ".yaml");
   if (!defaults) return defaults.error();
   std::vector<std::string> layers{*defaults};
@@ -79,8 +79,30 @@ Result<std::vector<std::string>> config_layers(std::string_view service, std::st
     std::error_code error;
     if (fs::exists(layer, error)) layers.push_back(layer.string());
   }
+  if (!saved_file.empty()) {
+    std::error_code error;
+    if (fs::exists(saved_file, error)) layers.push_back(saved_file);
+  }
   if (!user_file.empty()) layers.push_back(user_file);
   return layers;
+}
+
+std::string saved_parameters_file(std::string_view instance) {
+  fs::path directory;
+  if (const char* dir = std::getenv("SSL_PARAMS_DIR"); dir != nullptr && *dir != '\0') {
+    directory = dir;
+  } else if (const char* state = std::getenv("XDG_STATE_HOME"); state != nullptr && *state != '\0') {
+    directory = fs::path(state) / "ssl-stack" / "params";
+  } else if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') {
+    directory = fs::path(home) / ".local" / "state" / "ssl-stack" / "params";
+  } else {
+    directory = "/var/lib/ssl-stack/params";
+  }
+  std::string name(instance);
+  for (char& c : name) {
+    if (c == '/') c = '-';
+  }
+  return (directory / (name + ".yaml")).string();
 }
 
 }  // namespace ssl

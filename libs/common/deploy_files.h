@@ -31,8 +31,14 @@ std::string chosen_site(const std::string& flag);
 Result<std::string> find_site(std::string_view site);
 
 /// The config files of `service`, lowest first: config/<service>.yaml; sites/<site>/<service>.yaml when
-/// `site` is set and changes something of the service; `user_file` when not empty.
+/// `site` is set and changes something of the service; `saved_file` (run-time parameters saved by the
+/// instance) when not empty and it exists; `user_file` when not empty.
 Result<std::vector<std::string>> config_layers(std::string_view service, std::string_view site,
-                                               const std::string& user_file);
+                                               const std::string& user_file, const std::string& saved_file = "");
+
+/// Where service instance `instance` ("planner/blue") saves its run-time parameters:
+/// <dir>/planner-blue.yaml, <dir> being $SSL_PARAMS_DIR, else $XDG_STATE_HOME/ssl-stack/params, else
+/// ~/.local/state/ssl-stack/params (the units: /var/lib/ssl-stack/params).
+std::string saved_parameters_file(std::string_view instance);
 
 }  // namespace ssl

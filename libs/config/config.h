@@ -67,6 +67,19 @@ class Fields;
 template <typename T, typename M>
 class FieldSpec;
 
+/// One scalar key of a config with its schema and current value (for run-time parameters: a page or a
+/// terminal lists, edits and checks them). Lists and nested maps are not scalar keys.
+struct KeyInfo {
+  std::string key;                   // dotted path, e.g. "planner.limits.max_speed"
+  std::string type;                  // "boolean", "integer", "number", "string", "one of a, b"
+  std::string value;                 // current value as YAML scalar text (strings unquoted)
+  std::optional<double> min;         // numbers: inclusive limits
+  std::optional<double> max;
+  std::vector<std::string> allowed;  // strings with one_of, enums: the accepted values
+  std::string unit;
+  std::string doc;
+};
+
 namespace detail {
 
 template <typename M>
@@ -97,6 +110,8 @@ class FieldBase {
   virtual Node dump(const T& in) const = 0;
   virtual void check_schema(Context& context, const std::string& path) const = 0;
   virtual void describe(std::vector<std::string>& lines, const std::string& path) const = 0;
+  /// Appends a KeyInfo for each scalar key under this field, with its value in `in`.
+  virtual void collect(std::vector<KeyInfo>& out, const T& in, const std::string& path) const = 0;
 };
 
 /// Limits and names that apply to one value (or to each element of a list).
@@ -236,6 +251,7 @@ class FieldSpec final : public detail::FieldBase<T> {
   detail::Node dump(const T& in) const override;
   void check_schema(detail::Context& context, const std::string& path) const override;
   void describe(std::vector<std::string>& lines, const std::string& path) const override;
+  void collect(std::vector<KeyInfo>& out, const T& in, const std::string& path) const override;
 
  private:
   std::string comment() const;
@@ -323,6 +339,10 @@ std::string to_yaml(const T& value, const Fields<T>& fields);
 /// One line per key: path, type, limits, default or "required", unit and doc (for --help-config).
 template <typename T>
 std::string describe(const Fields<T>& fields);
+
+/// Every scalar key of `value` with its schema and current value, in schema order.
+template <typename T>
+std::vector<KeyInfo> key_infos(const T& value, const Fields<T>& fields);
 
 // =========================================================================================================
 // Implementation
@@ -744,6 +764,38 @@ void FieldSpec<T, M>::describe(std::vector<std::string>& lines, const std::strin
       detail::describe_record(*constraints_.fields, lines, path + "[]");
     }
   }
+}
+
+template <typename T, typename M>
+void FieldSpec<T, M>::collect(std::vector<KeyInfo>& out, const T& in, const std::string& path) const {
+  if constexpr (!kIsList && detail::kIsRecord<Element>) {
+    for (const Field<Element>& field : constraints_.fields->fields()) {
+      field.impl().collect(out, in.*member_, detail::join_key(path, field.impl().key()));
+    }
+  } else if constexpr (!kIsList) {
+    KeyInfo info{.key = path, .type = type_name(), .unit = constraints_.unit, .doc = doc_};
+    if constexpr (std::is_same_v<Element, std::string>) {
+      info.value = in.*member_;
+      info.allowed = constraints_.allowed;
+    } else {
+      info.value = detail::format_value(in.*member_, constraints_);
+    }
+    if constexpr (kIsNumber) {
+      if (constraints_.min) info.min = static_cast<double>(*constraints_.min);
+      if (constraints_.max) info.max = static_cast<double>(*constraints_.max);
+    }
+    if constexpr (std::is_enum_v<Element>) {
+      for (const auto& [name, value] : constraints_.names) info.allowed.push_back(name);
+    }
+    out.push_back(std::move(info));
+  }
+}
+
+template <typename T>
+std::vector<KeyInfo> key_infos(const T& value, const Fields<T>& fields) {
+  std::vector<KeyInfo> out;
+  for (const Field<T>& field : fields.fields()) field.impl().collect(out, value, field.impl().key());
+  return out;
 }
 
 template <typename T>

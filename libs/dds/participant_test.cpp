@@ -132,7 +132,7 @@ TEST(ParticipantTest, LateJoinerGetsTheLastRefereeStateOnly) {
 
 TEST(ParticipantTest, AllTopicsAreListedWithTypesAndProfiles) {
   const auto topics = all_topics();
-  ASSERT_EQ(topics.size(), 12u);
+  ASSERT_EQ(topics.size(), 13u);
   EXPECT_EQ(topics[0].name, "vision.detection");
   EXPECT_EQ(topics[0].type_name, "ssl::idl::vision::DetectionFrame");
   EXPECT_EQ(topics[0].writer_profile, "vision.detection.writer");

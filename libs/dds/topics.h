@@ -63,6 +63,8 @@ inline constexpr TopicSpec<idl::planner::PlannerDebug, idl::planner::PlannerDebu
     "planner.debug", TopicScope::kTeam, "play, roles, tree status and planned paths"};
 inline constexpr TopicSpec<idl::system::ParameterSet, idl::system::ParameterSetPubSubType> kSystemParams{
     "system.params", TopicScope::kShared, "dynamic parameters per service instance"};
+inline constexpr TopicSpec<idl::system::ParameterState, idl::system::ParameterStatePubSubType> kSystemParamState{
+    "system.param_state", TopicScope::kShared, "each service instance's run-time parameters and last answer"};
 inline constexpr TopicSpec<idl::system::Estop, idl::system::EstopPubSubType> kSystemEstop{
     "system.estop", TopicScope::kShared, "emergency stop"};
 inline constexpr TopicSpec<idl::system::Health, idl::system::HealthPubSubType> kSystemHealth{
@@ -71,7 +73,7 @@ inline constexpr TopicSpec<idl::system::Health, idl::system::HealthPubSubType> k
 /// All topics, for tools that work on any topic by name.
 inline constexpr auto kAll = std::make_tuple(kVisionDetection, kVisionGeometry, kRefereeState, kRefereeEvent,
                                              kRefereeCommand, kWorldState, kRobotCommands, kRobotFeedback, kPlannerDebug,
-                                             kSystemParams, kSystemEstop, kSystemHealth);
+                                             kSystemParams, kSystemParamState, kSystemEstop, kSystemHealth);
 
 }  // namespace topics
 

@@ -4,11 +4,13 @@
 
 namespace ssl::service {
 
-Result<Setup> prepare(std::string_view service, const std::string& site_flag, const std::string& config_file) {
+Result<Setup> prepare(std::string_view service, const std::string& site_flag, const std::string& config_file,
+                      std::string_view instance) {
   Setup setup;
   setup.site = chosen_site(site_flag);
+  if (!instance.empty()) setup.saved_parameters = saved_parameters_file(instance);
   if (!service.empty()) {
-    auto layers = config_layers(service, setup.site, config_file);
+    auto layers = config_layers(service, setup.site, config_file, setup.saved_parameters);
     if (!layers) return layers.error();
     setup.config_files = std::move(*layers);
   }

@@ -10,6 +10,7 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "libs/common/result.h"
@@ -20,12 +21,34 @@ namespace ssl::service {
 struct Setup {
   std::string site;                        // "" without a site
   std::vector<std::string> config_files;   // the service's config layers, lowest first
+  std::string saved_parameters;            // where the instance saves its run-time parameters ("" none)
   dds::DiscoveryConfig discovery;          // the site's (deploy/config/dds.yaml + sites/<site>/dds.yaml)
 };
 
 /// `service`: the config's name (config/<service>.yaml), or "" for a program without one (sslctl);
-/// `site_flag`: --site; `config_file`: --config, laid over the defaults and the site.
-Result<Setup> prepare(std::string_view service, const std::string& site_flag, const std::string& config_file);
+/// `site_flag`: --site; `config_file`: --config, laid over the defaults and the site; `instance`
+/// ("planner/blue"): a service with run-time parameters, whose saved ones are a layer under --config.
+Result<Setup> prepare(std::string_view service, const std::string& site_flag, const std::string& config_file,
+                      std::string_view instance = "");
+
+/// prepare() and the config of a service instance with run-time parameters, whose instance name comes
+/// from its config (the team): loaded once to learn the instance, and again when that instance saved
+/// parameters (a layer under --config). `load(config_files)` loads the config with the flags' overrides.
+template <typename Config, typename Load, typename InstanceOf>
+Result<std::pair<Setup, Config>> prepare_instance(std::string_view service, const std::string& site_flag,
+                                                  const std::string& config_file, Load load, InstanceOf instance_of) {
+  auto setup = prepare(service, site_flag, config_file);
+  if (!setup) return setup.error();
+  Result<Config> config = load(setup->config_files);
+  if (!config) return config.error();
+  auto with_saved = prepare(service, site_flag, config_file, instance_of(*config));
+  if (!with_saved) return with_saved.error();
+  if (with_saved->config_files != setup->config_files) {
+    config = load(with_saved->config_files);
+    if (!config) return config.error();
+  }
+  return std::pair<Setup, Config>{std::move(*with_saved), std::move(*config)};
+}
 
 /// "site sim: /etc/ssl-stack/config/planner.yaml + .../sites/sim/planner.yaml; discovery multicast": the
 /// startup log line.

@@ -41,16 +41,16 @@ int main(int argc, char** argv) {
     std::cout << ssl::planner::planner_config_help();
     return 0;
   }
-  auto setup = ssl::service::prepare("planner", flags.site, flags.config_file);
-  if (!setup) {
-    logger->critical("{}", setup.error().message);
+  auto prepared = ssl::service::prepare_instance<ssl::planner::PlannerServiceConfig>(
+      "planner", flags.site, flags.config_file,
+      [&](const std::vector<std::string>& files) { return ssl::planner::load_planner_config(files, flags.overrides()); },
+      [](const ssl::planner::PlannerServiceConfig& c) { return "planner/" + std::string(ssl::to_string(c.team)); });
+  if (!prepared) {
+    logger->critical("{}", prepared.error().message);
     return 1;
   }
-  auto config = ssl::planner::load_planner_config(setup->config_files, flags.overrides());
-  if (!config) {
-    logger->critical("{}", config.error().message);
-    return 1;
-  }
+  const ssl::service::Setup* setup = &prepared->first;
+  const ssl::planner::PlannerServiceConfig* config = &prepared->second;
   if (flags.print_config) {
     std::cout << ssl::planner::planner_config_yaml(*config);
     return 0;
@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   ssl::time::RealClock wall_clock;
-  auto node = ssl::planner::PlannerNode::create(*participant, *config, wall_clock);
+  auto node = ssl::planner::PlannerNode::create(*participant, *config, wall_clock, setup->saved_parameters);
   if (!node) {
     logger->critical("{}", node.error().message);
     return 1;

@@ -71,14 +71,33 @@ Fields<PlannerServiceConfig> service_fields() {
 
 wm::FieldSize division_field(Division division) { return FieldGeometry::of(division); }
 
-Result<PlannerServiceConfig> load_planner_config(std::span<const std::string> files, const std::vector<std::string>& overrides) {
-  auto loaded = config::load_files(files, service_fields(), overrides);
-  if (!loaded) return loaded;
-  PlannerServiceConfig& c = *loaded;
+namespace {
+
+/// What the core takes from the service's keys.
+void fill_derived(PlannerServiceConfig& c) {
   c.core.team = c.team;
   c.core.tick_period = 1.0 / (c.tick_mode == TickMode::kFixedRate ? c.tick_rate : c.max_rate);
   c.core.default_field = division_field(c.default_division);
+}
+
+}  // namespace
+
+Result<PlannerServiceConfig> load_planner_config(std::span<const std::string> files, const std::vector<std::string>& overrides) {
+  auto loaded = config::load_files(files, service_fields(), overrides);
+  if (!loaded) return loaded;
+  fill_derived(*loaded);
   return loaded;
+}
+
+Result<config::RuntimeParameters<PlannerServiceConfig>> planner_runtime_parameters(const PlannerServiceConfig& config) {
+  // What may change between two ticks: the skill layer's limits and the margins the plays keep. The team,
+  // the ticking, the skill layer's kind and the rules' distances stay as started.
+  return config::RuntimeParameters<PlannerServiceConfig>::create(
+      config, service_fields(),
+      {"planner.limits.max_speed", "planner.limits.max_acceleration", "planner.limits.max_angular_speed",
+       "planner.limits.max_angular_acceleration", "planner.actuation_latency", "planner.stop_speed_margin",
+       "planner.keep_away_margin"},
+      fill_derived);
 }
 
 Result<PlannerServiceConfig> load_planner_config(const std::string& path, const std::vector<std::string>& overrides) {

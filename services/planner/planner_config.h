@@ -2,6 +2,8 @@
 // start; flags (--team) and --set override single keys. Units per key in the schema (planner_config.cpp).
 #pragma once
 
+#include "libs/config/runtime_parameters.h"
+
 #include "libs/domain/division.h"
 #include <span>
 #include <string>
@@ -38,5 +40,8 @@ Result<PlannerServiceConfig> load_planner_config(const std::string& path, const 
 std::string planner_config_yaml(const PlannerServiceConfig& config);
 /// Every key with its type, unit, limits and documentation (for --help-config).
 std::string planner_config_help();
+
+/// The keys that may change while the planner runs (the console, `sslctl param`), starting from `config`.
+Result<config::RuntimeParameters<PlannerServiceConfig>> planner_runtime_parameters(const PlannerServiceConfig& config);
 
 }  // namespace ssl::planner

@@ -38,16 +38,16 @@ int main(int argc, char** argv) {
   auto logger = spdlog::default_logger()->clone("robot_link");
   logger->set_level(spdlog::level::from_str(flags.log_level));
 
-  auto setup = ssl::service::prepare("robot_link", flags.site, flags.config_file);
-  if (!setup) {
-    logger->critical("{}", setup.error().message);
+  auto prepared = ssl::service::prepare_instance<ssl::robot_link::RobotLinkConfig>(
+      "robot_link", flags.site, flags.config_file,
+      [&](const std::vector<std::string>& files) { return ssl::robot_link::load_robot_link_config(files, flags.overrides()); },
+      [](const ssl::robot_link::RobotLinkConfig& c) { return c.team.empty() ? std::string() : "robot_link/" + c.team; });
+  if (!prepared) {
+    logger->critical("{}", prepared.error().message);
     return 1;
   }
-  auto config = ssl::robot_link::load_robot_link_config(setup->config_files, flags.overrides());
-  if (!config) {
-    logger->critical("{}", config.error().message);
-    return 1;
-  }
+  const ssl::service::Setup* setup = &prepared->first;
+  const ssl::robot_link::RobotLinkConfig* config = &prepared->second;
   if (flags.print_config) {
     std::cout << ssl::robot_link::robot_link_config_yaml(*config);
     return 0;
@@ -60,7 +60,9 @@ int main(int argc, char** argv) {
 
   logger->info("{}", ssl::service::describe(*setup));
   ssl::Status ran = ssl::robot_link::run_robot_link(
-      {.config = *config, .team = *team, .domain_id = flags.domain, .discovery = setup->discovery}, shutdown, logger);
+      {.config = *config, .team = *team, .domain_id = flags.domain, .discovery = setup->discovery,
+       .saved_parameters = setup->saved_parameters},
+      shutdown, logger);
   if (!ran) {
     logger->critical("{}", ran.error().message);
     return 1;

@@ -116,6 +116,16 @@ Result<RobotLinkConfig> load_robot_link_config(const std::string& path, const st
   return load_robot_link_config(std::span<const std::string>(&path, 1), overrides);
 }
 
+Result<config::RuntimeParameters<RobotLinkConfig>> robot_link_runtime_parameters(const RobotLinkConfig& config) {
+  // The robots' limits (a slower robot in the lab, a weaker kicker). The watchdog, the send rate and the
+  // backend stay as started: the safety layer does not change under a running match.
+  return config::RuntimeParameters<RobotLinkConfig>::create(
+      config, robot_link_fields(),
+      {"robot.vel_absolute_max", "robot.vel_angular_max", "robot.acc_speedup_absolute_max",
+       "robot.acc_brake_absolute_max", "robot.acc_speedup_angular_max", "robot.acc_brake_angular_max",
+       "robot.max_linear_kick_speed", "robot.max_chip_kick_speed", "robot.max_dribbler_rpm"});
+}
+
 std::string robot_link_config_yaml(const RobotLinkConfig& config) {
   return config::to_yaml(config, robot_link_fields());
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "libs/common/result.h"
+#include "libs/config/runtime_parameters.h"
 #include "libs/common/team.h"
 #include "services/robot_link/backend/backend.h"
 #include "services/robot_link/core/robot_link_core.h"
@@ -60,6 +61,9 @@ std::string robot_link_config_yaml(const RobotLinkConfig& config);
 Result<TeamColor> config_team(const RobotLinkConfig& config);
 
 CoreConfig core_config(const RobotLinkConfig& config);
+
+/// The keys that may change while robot_link runs (the console, `sslctl param`): the robots' limits.
+Result<config::RuntimeParameters<RobotLinkConfig>> robot_link_runtime_parameters(const RobotLinkConfig& config);
 BackendOptions backend_options(const RobotLinkConfig& config, TeamColor team);
 
 }  // namespace ssl::robot_link

@@ -31,16 +31,16 @@ int main(int argc, char** argv) {
   auto logger = spdlog::default_logger()->clone("world_model");
   logger->set_level(spdlog::level::from_str(flags.log_level));
 
-  auto setup = ssl::service::prepare("world_model", flags.site, flags.config_file);
-  if (!setup) {
-    logger->critical("{}", setup.error().message);
+  auto prepared = ssl::service::prepare_instance<ssl::wm::WorldModelServiceConfig>(
+      "world_model", flags.site, flags.config_file,
+      [&](const std::vector<std::string>& files) { return ssl::wm::load_world_model_config(files, flags.overrides()); },
+      [](const ssl::wm::WorldModelServiceConfig& c) { return "world_model/" + std::string(ssl::to_string(c.team)); });
+  if (!prepared) {
+    logger->critical("{}", prepared.error().message);
     return 1;
   }
-  auto config = ssl::wm::load_world_model_config(setup->config_files, flags.overrides());
-  if (!config) {
-    logger->critical("{}", config.error().message);
-    return 1;
-  }
+  const ssl::service::Setup* setup = &prepared->first;
+  const ssl::wm::WorldModelServiceConfig* config = &prepared->second;
   if (flags.print_config) {
     std::cout << ssl::wm::world_model_config_yaml(*config);
     return 0;
@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   ssl::time::RealClock wall_clock;
-  auto node = ssl::wm::WorldModelNode::create(*participant, *config, wall_clock);
+  auto node = ssl::wm::WorldModelNode::create(*participant, *config, wall_clock, setup->saved_parameters);
   if (!node) {
     logger->critical("{}", node.error().message);
     return 1;

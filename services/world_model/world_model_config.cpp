@@ -144,6 +144,17 @@ Result<WorldModelServiceConfig> load_world_model_config(std::span<const std::str
   return loaded;
 }
 
+Result<config::RuntimeParameters<WorldModelServiceConfig>> world_model_runtime_parameters(
+    const WorldModelServiceConfig& config) {
+  // The thresholds the model reads at every frame; the filters' noise models stay as started.
+  return config::RuntimeParameters<WorldModelServiceConfig>::create(
+      config, service_fields(),
+      {"filter.min_confidence", "filter.possession_distance", "filter.near_robot_distance",
+       "filter.dribbler_capture_distance", "filter.robot_lost_timeout", "filter.ball_lost_timeout",
+       "filter.visible_timeout"},
+      [](WorldModelServiceConfig& c) { c.core.team = c.team; });
+}
+
 Result<WorldModelServiceConfig> load_world_model_config(const std::string& path, const std::vector<std::string>& overrides) {
   return load_world_model_config(std::span<const std::string>(&path, 1), overrides);
 }

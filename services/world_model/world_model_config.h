@@ -2,6 +2,8 @@
 // start; flags (--team) override single keys. Units per key in the schema (world_model_config.cpp).
 #pragma once
 
+#include "libs/config/runtime_parameters.h"
+
 #include <span>
 #include <string>
 #include <vector>
@@ -26,5 +28,9 @@ Result<WorldModelServiceConfig> load_world_model_config(std::span<const std::str
 /// One complete file.
 Result<WorldModelServiceConfig> load_world_model_config(const std::string& path, const std::vector<std::string>& overrides);
 std::string world_model_config_yaml(const WorldModelServiceConfig& config);
+
+/// The keys that may change while world_model runs (the console, `sslctl param`): its thresholds.
+Result<config::RuntimeParameters<WorldModelServiceConfig>> world_model_runtime_parameters(
+    const WorldModelServiceConfig& config);
 
 }  // namespace ssl::wm

@@ -7,7 +7,8 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawn, spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -42,7 +43,9 @@ if (!existsSync(path.join(buildDir, 'bin', 'console'))) skip(`no console binary 
 
 mkdirSync(artifacts, { recursive: true });
 const sslctl = path.join(buildDir, 'bin', 'sslctl');
-const env = { ...process.env, SSL_BUILD_DIR: buildDir };
+// Saved run-time parameters go to a directory of this run, never to the user's.
+const paramsDir = mkdtempSync(path.join(tmpdir(), 'ssl-browser-params-'));
+const env = { ...process.env, SSL_BUILD_DIR: buildDir, SSL_PARAMS_DIR: paramsDir };
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 
 /// Runs `sslctl topic echo TOPIC` and resolves with the first sample for which `accept(sample)` holds.
@@ -242,6 +245,36 @@ test('the space bar engages the e-stop and never releases it', async () => {
   await waitForSample('system.estop', (estop) => !estop.engaged, { timeoutS: 5 });
 });
 
+test('a parameter edit reaches the planner, a bad one is refused with the reason, and it saves', async () => {
+  const row = page.locator('tr.param-row[data-target="planner/blue"][data-key="planner.limits.max_speed"]');
+  await row.waitFor({ timeout: 10_000 });
+  await row.locator('.param-value').fill('2.25');
+  await row.locator('.param-value').press('Enter');
+  await page.waitForFunction(() => document.querySelector(
+    'tr.param-row[data-target="planner/blue"][data-key="planner.limits.max_speed"] .param-status')?.textContent?.includes('ok'),
+  null, { timeout: 5000 });
+  const got = spawnSync(sslctl, ['param', 'get', 'planner/blue', 'planner.limits.max_speed', '--domain', String(DOMAIN)],
+    { env, encoding: 'utf8' });
+  assert.equal(got.status, 0, got.stderr);
+  assert.equal(got.stdout.trim(), '2.25', 'the planner does not report the new value');
+
+  await row.locator('.param-value').fill('99');
+  await row.locator('.param-value').press('Enter');
+  await page.waitForFunction(() => /out of range/.test(document.querySelector(
+    'tr.param-row[data-target="planner/blue"][data-key="planner.limits.max_speed"] .param-status')?.textContent ?? ''),
+  null, { timeout: 5000 });
+  const kept = spawnSync(sslctl, ['param', 'get', 'planner/blue', 'planner.limits.max_speed', '--domain', String(DOMAIN)],
+    { env, encoding: 'utf8' });
+  assert.equal(kept.stdout.trim(), '2.25', 'a refused value changed the planner');
+  await page.screenshot({ path: path.join(artifacts, 'params.png') });
+
+  await page.click('.param-group[data-target="planner/blue"] .param-save');
+  const saved = path.join(paramsDir, 'planner-blue.yaml');
+  const deadline = Date.now() + 5000;
+  while (!existsSync(saved) && Date.now() < deadline) await sleep(100);
+  assert.match(readFileSync(saved, 'utf8'), /max_speed: 2\.25/);
+});
+
 test('without the token, operator actions are refused', async () => {
   const guest = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   await guest.goto(`http://127.0.0.1:${TOKEN_PORT}/`);
@@ -249,7 +282,8 @@ test('without the token, operator actions are refused', async () => {
   assert.equal(await guest.evaluate(() => window.sslConsole.state.hello.operator), false);
   assert.equal(await guest.locator('[data-command="STOP"]').isDisabled(), true, 'the STOP button is enabled read-only');
   for (const [action, body] of [['referee', { command: 'STOP' }], ['estop', { engaged: true }],
-    ['place', { object: 'ball', x: 0, y: 0 }]]) {
+    ['place', { object: 'ball', x: 0, y: 0 }],
+    ['params', { target: 'planner/blue', key: 'planner.limits.max_speed', value: '2' }]]) {
     const refused = await guest.request.post(`http://127.0.0.1:${TOKEN_PORT}/api/${action}`, { data: body });
     assert.equal(refused.status(), 403, `/api/${action} without the token answered ${refused.status()}`);
     const wrong = await guest.request.post(`http://127.0.0.1:${TOKEN_PORT}/api/${action}`,

@@ -40,12 +40,13 @@ using ::testing::Not;
 
 
 const std::vector<std::string> kExecutables{"simulator",   "vision_gateway", "referee_gateway", "world_model",
-                                            "planner",     "robot_link",     "sslctl"};
+                                            "planner",     "robot_link",     "console",        "sslctl"};
 const std::vector<std::string> kUnits{"ssl-discovery.service",     "ssl-simulator.service",
                                       "ssl-vision-gateway.service", "ssl-referee-gateway.service",
                                       "ssl-robot-link@.service",   "ssl-world-model@.service",
-                                      "ssl-planner@.service",      "ssl-field.target",
-                                      "ssl-team@.target"};
+                                      "ssl-planner@.service",      "ssl-console.service",
+                                      "ssl-field.target",          "ssl-team@.target",
+                                      "ssl-coach.target"};
 
 struct TempDir {
   TempDir() {
@@ -241,7 +242,8 @@ INSTANTIATE_TEST_SUITE_P(
         NotifyCase{"referee_gateway", {"--domain", "160", "--referee-port", "42166"}},
         NotifyCase{"world_model", {"--domain", "160", "--team", "blue"}},
         NotifyCase{"planner", {"--domain", "160", "--team", "blue"}},
-        NotifyCase{"robot_link", {"--domain", "160", "--team", "blue", "--sim-port", "42167"}}),
+        NotifyCase{"robot_link", {"--domain", "160", "--team", "blue", "--sim-port", "42167"}},
+        NotifyCase{"console", {"--domain", "160", "--http-port", "42172"}}),
     [](const ::testing::TestParamInfo<NotifyCase>& param) { return param.param.program; });
 
 TEST(ServiceManager, WithoutANotifySocketTheServicesRunAsBefore) {
@@ -396,14 +398,15 @@ TEST(Units, EachExecStartAsWrittenWithItsEnvironmentFileGivesAHealthyService) {
   const std::vector<std::pair<std::string, std::string>> started{
       {"ssl-simulator.service", ""},         {"ssl-vision-gateway.service", ""},
       {"ssl-referee-gateway.service", ""},   {"ssl-robot-link@.service", "blue"},
-      {"ssl-world-model@.service", "blue"},  {"ssl-planner@.service", "blue"}};
+      {"ssl-world-model@.service", "blue"},  {"ssl-planner@.service", "blue"},
+      {"ssl-console.service", ""}};
   for (const auto& [unit, instance] : started) {
     auto child = start_unit(*ns, units / unit, env, instance);
     ASSERT_TRUE(child) << unit << ": " << child.error().message;
     running.push_back(std::move(*child));
   }
-  const std::vector<std::string> expected{"simulator",          "vision_gateway", "referee_gateway",
-                                          "robot_link/blue",    "world_model/blue", "planner/blue"};
+  const std::vector<std::string> expected{"simulator",       "vision_gateway",   "referee_gateway", "robot_link/blue",
+                                          "world_model/blue", "planner/blue",    "console/8080"};
   std::map<std::string, nlohmann::json> reports;
   for (int attempt = 0; attempt < 4; ++attempt) {
     reports = health_reports(ns->exec_args(bin_dir() / "sslctl", {}), 162, 3);

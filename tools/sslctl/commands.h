@@ -66,6 +66,24 @@ int topic_pub(const PubOptions& options, ShutdownSignal& shutdown, std::ostream&
 int estop(bool engage, const std::string& reason, const DdsOptions& dds, double linger_s,
           ShutdownSignal& shutdown, std::ostream& out, std::ostream& err);
 
+struct ParamOptions {
+  DdsOptions dds;
+  std::string target;                    // service instance, e.g. "planner/blue" ("" with list: all)
+  std::string key;                       // get
+  std::vector<std::string> assignments;  // set: "key=value"
+  bool save = false;                     // set: then save the instance's run-time parameters
+  bool json = false;                     // list: one JSON object per instance
+  double timeout_s = 3;                  // how long to wait for the instance
+};
+
+/// `sslctl param list [TARGET]`: every instance's run-time parameters (value, type, limits, meaning).
+int param_list(const ParamOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err);
+/// `sslctl param get TARGET KEY`: one value.
+int param_get(const ParamOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err);
+/// `sslctl param set TARGET KEY=VALUE... [--save]`: applies them all or none, waits for the answer; exit 1
+/// with the instance's reason when it refused.
+int param_set(const ParamOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err);
+
 /// `sslctl health`: listens to system.health for `listen_s` seconds and prints one line per service.
 int health(const DdsOptions& dds, double listen_s, bool json, ShutdownSignal& shutdown, std::ostream& out,
            std::ostream& err);

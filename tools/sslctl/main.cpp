@@ -3,6 +3,7 @@
 //   sslctl estop on|off
 //   sslctl health
 //   sslctl latency                                        (per-stage latency from the vision stamps)
+//   sslctl param list [TARGET] | get TARGET KEY | set TARGET KEY=VALUE... [--save]   (run-time parameters)
 //   sslctl log record FILE | replay FILE | info FILE     (the league's SSL log files)
 // Every DDS command takes --domain D (and --team blue|yellow for team-scoped topics).
 #include <CLI/CLI.hpp>
@@ -122,6 +123,28 @@ int main(int argc, char** argv) {
   latency_cmd->add_option("--domain", latency.domain_id, "DDS domain id")->check(CLI::Range(0, 232));
   latency_cmd->add_option("--site", latency.site, "site whose DDS discovery to use (default $SSL_SITE)");
 
+  auto* param = app.add_subcommand("param", "run-time parameters of the services (planner, world_model, robot_link)");
+  param->require_subcommand(1);
+  ssl::sslctl::ParamOptions param_options;
+  std::string param_team;
+  auto* param_list_cmd = param->add_subcommand("list", "every instance's run-time parameters with type, limits and meaning");
+  param_list_cmd->add_option("target", param_options.target, "only this instance, e.g. planner/blue");
+  param_list_cmd->add_flag("--json", param_options.json, "one JSON object per instance");
+  auto* param_get_cmd = param->add_subcommand("get", "one parameter's value");
+  param_get_cmd->add_option("target", param_options.target, "instance, e.g. planner/blue")->required();
+  param_get_cmd->add_option("key", param_options.key, "dotted key, e.g. planner.limits.max_speed")->required();
+  auto* param_set_cmd = param->add_subcommand("set", "change parameters (all or none), wait for the answer");
+  param_set_cmd->add_option("target", param_options.target, "instance, e.g. planner/blue")->required();
+  param_set_cmd->add_option("assignments", param_options.assignments, "key=value ...");
+  param_set_cmd->add_flag("--save", param_options.save,
+                          "then save the instance's run-time parameters (loaded at its next start)");
+  for (CLI::App* command : {param_list_cmd, param_get_cmd, param_set_cmd}) {
+    command->add_option("--timeout", param_options.timeout_s, "wait this many seconds for the instance")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    add_dds_flags(*command, param_options.dds, param_team);
+  }
+
   auto* log = app.add_subcommand("log", "SSL log files in the league's format (.log, .log.gz)");
   log->require_subcommand(1);
 
@@ -197,6 +220,9 @@ int main(int argc, char** argv) {
     return ssl::sslctl::health(health_dds, health_listen, health_json, shutdown, std::cout, std::cerr);
   }
   if (latency_cmd->parsed()) return ssl::sslctl::latency(latency, shutdown, std::cout, std::cerr);
+  if (param_list_cmd->parsed()) return ssl::sslctl::param_list(param_options, shutdown, std::cout, std::cerr);
+  if (param_get_cmd->parsed()) return ssl::sslctl::param_get(param_options, shutdown, std::cout, std::cerr);
+  if (param_set_cmd->parsed()) return ssl::sslctl::param_set(param_options, shutdown, std::cout, std::cerr);
   if (record_cmd->parsed()) {
     record.legacy = !record_no_legacy;
     return ssl::sslctl::log_record(record, shutdown, std::cout, std::cerr);

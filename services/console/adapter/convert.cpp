@@ -107,6 +107,48 @@ EstopView from_idl(const idl::system::Estop& estop) {
   return {.engaged = estop.engaged(), .source = estop.source(), .reason = estop.reason()};
 }
 
+ParameterStateView from_idl(const idl::system::ParameterState& state) {
+  ParameterStateView out{.target = state.target(),
+                         .revision = state.revision(),
+                         .accepted = state.accepted(),
+                         .reason = state.reason(),
+                         .saved_file = state.saved_file()};
+  for (const auto& p : state.params()) {
+    config::KeyInfo key{.key = p.key(), .type = p.type(), .value = p.value(), .allowed = p.allowed(),
+                        .unit = p.unit(), .doc = p.description()};
+    if (p.has_min()) key.min = p.min();
+    if (p.has_max()) key.max = p.max();
+    out.params.push_back(std::move(key));
+  }
+  return out;
+}
+
+idl::system::ParameterSet to_idl(const ParamAction& action, std::uint64_t revision, const std::string& author,
+                                 std::int64_t stamp_unix_ns) {
+  idl::system::ParameterSet out;
+  out.target(action.target);
+  out.revision(revision);
+  idl::system::Parameter value;
+  value.key(action.key);
+  value.value(action.value);
+  out.values({value});
+  out.save(false);
+  out.author(author);
+  out.stamp_unix_ns(stamp_unix_ns);
+  return out;
+}
+
+idl::system::ParameterSet save_request(const ParamSaveAction& action, std::uint64_t revision,
+                                       const std::string& author, std::int64_t stamp_unix_ns) {
+  idl::system::ParameterSet out;
+  out.target(action.target);
+  out.revision(revision);
+  out.save(true);
+  out.author(author);
+  out.stamp_unix_ns(stamp_unix_ns);
+  return out;
+}
+
 idl::referee::RefereeOperatorCommand to_idl(const RefereeAction& action, const std::string& author,
                                             std::int64_t stamp_unix_ns) {
   idl::referee::RefereeOperatorCommand out;

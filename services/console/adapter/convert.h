@@ -20,6 +20,13 @@ TeamDebug from_idl(const idl::planner::PlannerDebug& debug);
 ServiceHealth from_idl(const idl::system::Health& health);
 RobotFeedbackView from_idl(const idl::robot::RobotFeedback& feedback, TeamColor team);
 EstopView from_idl(const idl::system::Estop& estop);
+ParameterStateView from_idl(const idl::system::ParameterState& state);
+
+/// A request for `action.target`: set `action.key` (when given) and/or save.
+idl::system::ParameterSet to_idl(const ParamAction& action, std::uint64_t revision, const std::string& author,
+                                 std::int64_t stamp_unix_ns);
+idl::system::ParameterSet save_request(const ParamSaveAction& action, std::uint64_t revision,
+                                       const std::string& author, std::int64_t stamp_unix_ns);
 
 idl::referee::RefereeOperatorCommand to_idl(const RefereeAction& action, const std::string& author,
                                             std::int64_t stamp_unix_ns);

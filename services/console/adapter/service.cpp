@@ -28,6 +28,12 @@ namespace topics = dds::topics;
 constexpr std::size_t kMaxBody = 64 * 1024;
 constexpr auto kStreamPing = std::chrono::milliseconds(1000);  // an idle stream writes a comment this often
 constexpr std::string_view kTokenHeader = "X-Console-Token";
+constexpr auto kParameterAnswerTimeout = std::chrono::seconds(3);
+
+std::int64_t wall_clock_unix_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
 
 template <typename T>
 struct TeamReaders {
@@ -66,10 +72,12 @@ struct ConsoleService::Impl {
   std::optional<dds::Reader<idl::referee::RefereeEvent>> referee_events;
   std::optional<dds::Reader<idl::system::Health>> health;
   std::optional<dds::Reader<idl::system::Estop>> estop;
+  std::optional<dds::Reader<idl::system::ParameterState>> parameter_states;
   TeamReaders<idl::world::WorldState> worlds;
   TeamReaders<idl::planner::PlannerDebug> debugs;
   TeamReaders<idl::robot::RobotFeedback> feedbacks;
   std::optional<dds::Writer<idl::referee::RefereeOperatorCommand>> referee_commands;
+  std::optional<dds::Writer<idl::system::ParameterSet>> parameter_requests;
   std::optional<dds::Participant> estop_participant;
   std::optional<dds::Writer<idl::system::Estop>> estop_writer;
   std::optional<dds::HealthReporter> reporter;
@@ -108,6 +116,8 @@ struct ConsoleService::Impl {
   template <typename Act>
   void operator_action(const httplib::Request& req, httplib::Response& res, Act act);
   void log_operator(const std::string& text);
+  /// Sends a parameter request and waits for its target's answer; replies to the page.
+  void parameter_request(const idl::system::ParameterSet& request, const httplib::Request& req, httplib::Response& res);
   std::string who(const httplib::Request& req) const { return "console (" + req.remote_addr + ")"; }
 };
 
@@ -130,6 +140,43 @@ void ConsoleService::Impl::operator_action(const httplib::Request& req, httplib:
   act();
 }
 
+void ConsoleService::Impl::parameter_request(const idl::system::ParameterSet& request, const httplib::Request& req,
+                                             httplib::Response& res) {
+  {
+    std::lock_guard lock(mutex);
+    if (!state.parameters(request.target())) {
+      return reply_error(res, 503, "no service '" + request.target() + "' reports run-time parameters");
+    }
+  }
+  if (Status written = parameter_requests->write(request); !written) {
+    ++action_errors;
+    return reply_error(res, 503, written.error().message);
+  }
+  // The console loop takes the answer from system.param_state; wait for ours.
+  const auto deadline = std::chrono::steady_clock::now() + kParameterAnswerTimeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    {
+      std::lock_guard lock(mutex);
+      const ParameterStateView* answer = state.parameters(request.target());
+      if (answer && answer->revision == request.revision()) {
+        ++(answer->accepted ? actions_done : action_errors);
+        std::string what = request.save() ? "saved " + request.target() + " parameters"
+                                          : "set " + request.target() + " " + request.values().front().key() + "=" +
+                                                request.values().front().value();
+        state.on_operator(what + (answer->accepted ? "" : " refused: " + answer->reason) + " by " + who(req),
+                          wall.now());
+        return reply(res, 200, {{"ok", answer->accepted},
+                                {"status", answer->accepted ? "ok" : "rejected"},
+                                {"reason", answer->reason},
+                                {"file", answer->saved_file}});
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ++action_errors;
+  reply_error(res, 503, request.target() + " did not answer within 3 s");
+}
+
 void ConsoleService::Impl::stream(const httplib::Request& req, httplib::Response& res) {
   std::shared_ptr<StreamClient> client = hub.open();
   if (!client) {
@@ -145,7 +192,7 @@ void ConsoleService::Impl::stream(const httplib::Request& req, httplib::Response
     client->push(sse_message("geometry", state.geometry_json().dump()));
     if (state.referee()) client->push(sse_message("referee", state.referee_json().dump()));
     client->push(sse_message("log", state.log_json().dump()));
-    client->push(sse_message("params", json{{"params", json::array()}}.dump()));
+    client->push(sse_message("params", state.params_json().dump()));
     client->push(sse_message("health", state.health_json(now).dump()));
     client->push(sse_message("report", state.report_json().dump()));
   }
@@ -187,7 +234,7 @@ void ConsoleService::Impl::routes() {
            {"log", state.log_json()},
            {"health", state.health_json(now)},
            {"report", state.report_json()},
-           {"params", {{"params", json::array()}}},
+           {"params", state.params_json()},
            {"viewers", hub.size()}});
   });
 
@@ -262,6 +309,24 @@ void ConsoleService::Impl::routes() {
     });
   });
 
+  server.Post("/api/params", [this](const httplib::Request& req, httplib::Response& res) {
+    operator_action(req, res, [&] {
+      auto action = parse_param_action(req.body);
+      if (!action) return reply_error(res, 400, action.error().message);
+      const std::int64_t now = wall_clock_unix_ns();
+      parameter_request(to_idl(*action, static_cast<std::uint64_t>(now), who(req), now), req, res);
+    });
+  });
+
+  server.Post("/api/params/save", [this](const httplib::Request& req, httplib::Response& res) {
+    operator_action(req, res, [&] {
+      auto action = parse_param_save_action(req.body);
+      if (!action) return reply_error(res, 400, action.error().message);
+      const std::int64_t now = wall_clock_unix_ns();
+      parameter_request(save_request(*action, static_cast<std::uint64_t>(now), who(req), now), req, res);
+    });
+  });
+
   server.set_error_handler([](const httplib::Request&, httplib::Response& res) {
     if (res.body.empty()) reply_error(res, res.status, "no such page");
   });
@@ -284,6 +349,9 @@ void ConsoleService::Impl::poll(time::Timestamp now, bool report_health, bool se
   for (const auto& sample : referee_events->take()) state.on_referee_event(referee::from_idl(sample.data), now);
   for (const auto& sample : health->take()) state.on_health(from_idl(sample.data), now);
   for (const auto& sample : estop->take()) state.on_estop(from_idl(sample.data), now);
+  bool parameters_changed = false;
+  for (const auto& sample : parameter_states->take()) parameters_changed |= state.on_parameters(from_idl(sample.data));
+  if (parameters_changed) hub.push(sse_message("params", state.params_json().dump()));
   for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
     if (auto world = worlds.of(team).take_latest()) state.on_world(team, from_idl(world->data), now);
     if (auto debug = debugs.of(team).take_latest()) state.on_debug(team, from_idl(debug->data));
@@ -332,6 +400,7 @@ Result<std::unique_ptr<ConsoleService>> ConsoleService::create(const ServiceOpti
   for (Status opened : {open(s.vision, topics::kVisionDetection), open(s.geometry, topics::kVisionGeometry),
                         open(s.referee, topics::kRefereeState), open(s.referee_events, topics::kRefereeEvent),
                         open(s.health, topics::kSystemHealth), open(s.estop, topics::kSystemEstop),
+                        open(s.parameter_states, topics::kSystemParamState),
                         open(s.worlds.blue, topics::kWorldState, TeamColor::kBlue),
                         open(s.worlds.yellow, topics::kWorldState, TeamColor::kYellow),
                         open(s.debugs.blue, topics::kPlannerDebug, TeamColor::kBlue),
@@ -343,13 +412,17 @@ Result<std::unique_ptr<ConsoleService>> ConsoleService::create(const ServiceOpti
   auto commands = participant.make_writer(topics::kRefereeCommand);
   if (!commands) return commands.error();
   s.referee_commands.emplace(std::move(*commands));
+  auto parameter_requests = participant.make_writer(topics::kSystemParams);
+  if (!parameter_requests) return parameter_requests.error();
+  s.parameter_requests.emplace(std::move(*parameter_requests));
   auto estop_participant = dds::Participant::create(options.estop_participant);
   if (!estop_participant) return estop_participant.error();
   s.estop_participant.emplace(std::move(*estop_participant));
   auto estop_writer = s.estop_participant->make_writer(topics::kSystemEstop);
   if (!estop_writer) return estop_writer.error();
   s.estop_writer.emplace(std::move(*estop_writer));
-  auto reporter = dds::HealthReporter::create(participant, "console");
+  // One health instance per console: a match may have several (the coach box's, a laptop's).
+  auto reporter = dds::HealthReporter::create(participant, "console/" + std::to_string(options.http_port));
   if (!reporter) return reporter.error();
   s.reporter.emplace(std::move(*reporter));
 

@@ -7,7 +7,7 @@
 //   * a UDP socket to the simulator's control port (placing the ball and robots), when configured;
 //   * the HTTP server (cpp-httplib): the page, /events (Server-Sent Events through StreamHub), /api/state
 //     and the POST actions of PROTOCOL.md, each checked by AccessPolicy;
-//   * its system.health ("console"): viewers, frames sent and dropped, actions done and refused.
+//   * its system.health ("console/<http port>"): viewers, frames sent and dropped, actions done and refused.
 // The console loop is the only writer of ConsoleState; HTTP threads read it and log actions under the
 // same mutex.
 //

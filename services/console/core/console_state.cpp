@@ -202,6 +202,25 @@ void ConsoleState::on_estop(const EstopView& estop, time::Timestamp now) {
   log({now, LogKind::kEstop, std::move(text), std::nullopt});
 }
 
+bool ConsoleState::on_parameters(const ParameterStateView& state) {
+  auto [it, inserted] = parameters_.try_emplace(state.target, state);
+  if (inserted) return true;
+  const ParameterStateView before = std::exchange(it->second, state);
+  if (before.revision != state.revision || before.accepted != state.accepted || before.saved_file != state.saved_file ||
+      before.params.size() != state.params.size()) {
+    return true;
+  }
+  for (std::size_t i = 0; i < state.params.size(); ++i) {
+    if (before.params[i].key != state.params[i].key || before.params[i].value != state.params[i].value) return true;
+  }
+  return false;
+}
+
+const ParameterStateView* ConsoleState::parameters(const std::string& target) const {
+  const auto it = parameters_.find(target);
+  return it == parameters_.end() ? nullptr : &it->second;
+}
+
 void ConsoleState::on_operator(std::string text, time::Timestamp now) {
   log({now, LogKind::kOperator, std::move(text), std::nullopt});
 }
@@ -475,6 +494,28 @@ json ConsoleState::report_json() const {
           {"placements", {{"tried", placements}, {"succeeded", placed}}},
           {"in_play_share", report.duration > 0 ? number(report.in_play / report.duration) : json(nullptr)},
           {"longest_stall_s", report.longest_stall ? number(report.longest_stall->seconds) : json(nullptr)}};
+}
+
+json ConsoleState::params_json() const {
+  json params = json::array();
+  for (const auto& [target, state] : parameters_) {
+    for (const config::KeyInfo& key : state.params) {
+      params.push_back({{"target", target},
+                        {"key", key.key},
+                        {"value", key.value},
+                        {"type", key.type},
+                        {"min", key.min ? json(*key.min) : json(nullptr)},
+                        {"max", key.max ? json(*key.max) : json(nullptr)},
+                        {"allowed", key.allowed},
+                        {"unit", key.unit},
+                        {"description", key.doc},
+                        {"revision", state.revision},
+                        {"status", state.accepted ? "ok" : "rejected"},
+                        {"reason", state.reason},
+                        {"saved_file", state.saved_file}});
+    }
+  }
+  return {{"params", std::move(params)}};
 }
 
 }  // namespace ssl::console

@@ -43,6 +43,8 @@ class ConsoleState {
   void on_health(const ServiceHealth& health, time::Timestamp now);
   void on_feedback(const RobotFeedbackView& feedback, time::Timestamp now);
   void on_estop(const EstopView& estop, time::Timestamp now);
+  /// Returns true when it changed what the page shows.
+  bool on_parameters(const ParameterStateView& state);
   /// An operator action the console performed (or refused): logged as kind "operator".
   void on_operator(std::string text, time::Timestamp now);
   void set_profile(const referee::RefereeProfile& profile) { profile_ = profile; }
@@ -58,6 +60,9 @@ class ConsoleState {
   nlohmann::json log_json() const;
   nlohmann::json health_json(time::Timestamp now) const;
   nlohmann::json report_json() const;
+  nlohmann::json params_json() const;
+  /// The last state of `target`, if it reported one.
+  const ParameterStateView* parameters(const std::string& target) const;
 
   const std::optional<referee::RefereeState>& referee() const { return referee_; }
   /// The ball as raw vision sees it now (the first ball of the freshest camera frame), vision frame.
@@ -97,6 +102,7 @@ class ConsoleState {
   std::map<std::string, HealthSlot> health_;
   std::map<std::pair<TeamColor, std::uint32_t>, FeedbackSlot> feedback_;
   std::optional<EstopView> estop_;
+  std::map<std::string, ParameterStateView> parameters_;
   std::optional<referee::RefereeProfile> profile_;
   EventLog log_;
   std::vector<LogEntry> new_entries_;

@@ -254,5 +254,28 @@ TEST(ConsoleState, TheReportCountsScoreFoulsAndPlacements) {
   EXPECT_DOUBLE_EQ(report["in_play_share"].get<double>(), 0.5);
 }
 
+TEST(ConsoleState, ParametersAreListedPerTargetWithTheLastAnswer) {
+  ConsoleState state;
+  ParameterStateView planner{.target = "planner/blue"};
+  planner.params.push_back({.key = "planner.limits.max_speed", .type = "number", .value = "3", .min = 0.1, .max = 10.0,
+                            .unit = "m/s", .doc = "normal play"});
+  EXPECT_TRUE(state.on_parameters(planner));
+  EXPECT_FALSE(state.on_parameters(planner));  // nothing new
+  planner.revision = 7;
+  planner.accepted = false;
+  planner.reason = "out of range";
+  EXPECT_TRUE(state.on_parameters(planner));
+  const json params = state.params_json()["params"];
+  ASSERT_EQ(params.size(), 1u);
+  EXPECT_EQ(params[0]["target"], "planner/blue");
+  EXPECT_EQ(params[0]["value"], "3");
+  EXPECT_DOUBLE_EQ(params[0]["max"].get<double>(), 10.0);
+  EXPECT_EQ(params[0]["status"], "rejected");
+  EXPECT_EQ(params[0]["reason"], "out of range");
+  EXPECT_EQ(params[0]["revision"], 7);
+  ASSERT_NE(state.parameters("planner/blue"), nullptr);
+  EXPECT_EQ(state.parameters("world_model/blue"), nullptr);
+}
+
 }  // namespace
 }  // namespace ssl::console

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "libs/common/team.h"
+#include "libs/config/config.h"
 #include "libs/geometry/vec2.h"
 #include "libs/time/time.h"
 
@@ -100,6 +101,16 @@ struct RobotFeedbackView {
   std::uint32_t id = 0;
   std::optional<double> battery_voltage;  // V
   std::optional<double> link_quality;     // 0..1
+};
+
+/// One service instance's run-time parameters (system.param_state) and its answer to the last request.
+struct ParameterStateView {
+  std::string target;                  // "planner/blue"
+  std::vector<config::KeyInfo> params;
+  std::uint64_t revision = 0;          // of the last request answered
+  bool accepted = true;
+  std::string reason;
+  std::string saved_file;
 };
 
 struct EstopView {

@@ -900,14 +900,22 @@
   const paramRows = new Map();  // "target\u0000key" -> {param, tr, input, status, dirty, answer, busy}
   let paramsShape = '';
 
+  // Types as the services' config schema names them: boolean, integer, non-negative integer, number,
+  // string, "one of a, b" (then `allowed` lists the values).
   function inputFor(p) {
+    if (Array.isArray(p.allowed) && p.allowed.length) {
+      const select = document.createElement('select');
+      select.className = 'param-value';
+      for (const value of p.allowed) select.append(new Option(value, value));
+      return select;
+    }
     const input = document.createElement('input');
     input.className = 'param-value';
-    if (p.type === 'bool') {
+    if (p.type === 'boolean') {
       input.type = 'checkbox';
-    } else if (p.type === 'double' || p.type === 'int') {
+    } else if (p.type === 'number' || /integer/.test(p.type)) {
       input.type = 'number';
-      input.step = p.type === 'int' ? '1' : 'any';
+      input.step = /integer/.test(p.type) ? '1' : 'any';
       if (typeof p.min === 'number') input.min = String(p.min);
       if (typeof p.max === 'number') input.max = String(p.max);
     } else {

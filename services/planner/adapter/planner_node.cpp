@@ -23,7 +23,7 @@ constexpr auto kHeldWorldMaxAge = 1ms;
 }  // namespace
 
 Result<PlannerNode> PlannerNode::create(dds::Participant& participant, const PlannerServiceConfig& config,
-                                        time::Clock& wall_clock) {
+                                        time::Clock& wall_clock, const std::string& saved_parameters) {
   namespace topics = dds::topics;
   auto world = participant.make_reader(topics::kWorldState, config.team);
   if (!world) return world.error();
@@ -35,10 +35,25 @@ Result<PlannerNode> PlannerNode::create(dds::Participant& participant, const Pla
   if (!commands) return commands.error();
   auto debug = participant.make_writer(topics::kPlannerDebug, config.team);
   if (!debug) return debug.error();
-  auto health = dds::HealthReporter::create(participant, "planner/" + std::string(to_string(config.team)));
+  const std::string instance = "planner/" + std::string(to_string(config.team));
+  auto health = dds::HealthReporter::create(participant, instance);
   if (!health) return health.error();
-  return PlannerNode(config, wall_clock, std::move(*world), std::move(*referee), std::move(*geometry),
-                     std::move(*commands), std::move(*debug), std::move(*health));
+  auto params = planner_runtime_parameters(config);
+  if (!params) return params.error();
+  PlannerNode node(config, wall_clock, std::move(*world), std::move(*referee), std::move(*geometry),
+                   std::move(*commands), std::move(*debug), std::move(*health));
+  auto live = service::LiveConfig<PlannerServiceConfig>::create(participant, instance, std::move(*params), saved_parameters);
+  if (!live) return live.error();
+  node.parameters_ = std::move(*live);
+  return node;
+}
+
+void PlannerNode::apply_parameters() {
+  std::optional<PlannerServiceConfig> next = parameters_->poll();
+  if (!next) return;
+  config_ = *next;
+  planner_.reconfigure(config_.core);
+  spdlog::info("planner/{}: run-time parameters changed", to_string(config_.team));
 }
 
 PlannerNode::PlannerNode(const PlannerServiceConfig& config, time::Clock& wall_clock,
@@ -155,6 +170,7 @@ void PlannerNode::tick(time::Timestamp now) {
 }
 
 bool PlannerNode::poll() {
+  apply_parameters();
   time::Timestamp now = clock_->now();
   take_inputs(now);
   bool ticked = false;

@@ -15,12 +15,17 @@
 // planner.debug sample. Inputs with NaN/inf or impossible values are rejected and counted, never passed
 // on. Health ("planner/<team>") once per second: tick rate, tick time p50/p99, counters.
 //
-//   auto node = PlannerNode::create(participant, config, clock);
+// Run-time parameters (planner_runtime_parameters: limits and margins) arrive on system.params for
+// "planner/<team>" and apply from the next tick; the node answers on system.param_state and saves them to
+// `saved_parameters` when asked.
+//
+//   auto node = PlannerNode::create(participant, config, clock, setup.saved_parameters);
 //   node->run(shutdown);
 #pragma once
 
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +34,7 @@
 #include "libs/common/shutdown.h"
 #include "libs/dds/health.h"
 #include "libs/dds/participant.h"
+#include "libs/service/parameters.h"
 #include "libs/time/clock.h"
 #include "services/planner/core/planner.h"
 #include "services/planner/planner_config.h"
@@ -50,7 +56,7 @@ struct PlannerNodeCounters {
 class PlannerNode {
  public:
   static Result<PlannerNode> create(dds::Participant& participant, const PlannerServiceConfig& config,
-                                    time::Clock& wall_clock);
+                                    time::Clock& wall_clock, const std::string& saved_parameters = "");
 
   /// Ticks and publishes until `shutdown` is requested.
   void run(ShutdownSignal& shutdown);
@@ -60,8 +66,10 @@ class PlannerNode {
 
   const PlannerNodeCounters& counters() const { return counters_; }
   const Planner& planner() const { return planner_; }
+  const PlannerServiceConfig& config() const { return config_; }
 
  private:
+
   PlannerNode(const PlannerServiceConfig& config, time::Clock& wall_clock,
               dds::Reader<idl::world::WorldState> world, dds::Reader<idl::referee::RefereeState> referee,
               dds::Reader<idl::vision::Geometry> geometry, dds::Writer<idl::robot::RobotCommands> commands,
@@ -73,8 +81,10 @@ class PlannerNode {
   std::chrono::nanoseconds wait_budget() const;
   void report_health(time::Timestamp now);
   void reject(std::uint64_t& counter, const std::string& why);
+  void apply_parameters();
 
   PlannerServiceConfig config_;
+  std::unique_ptr<service::LiveConfig<PlannerServiceConfig>> parameters_;
   time::Clock* clock_;
   Planner planner_;
   dds::Reader<idl::world::WorldState> world_reader_;

@@ -225,6 +225,7 @@ struct Planner::Impl {
       : config(cfg),
         game(cfg.team),
         memory(cfg.role_hysteresis),
+        own_motion(motion_planner == nullptr),
         motion(motion_planner ? std::move(motion_planner) : make_motion_planner(cfg)),
         tree(bt::reactive_selector("Root", {referee_override(), base_strategy()})) {
     robots.reserve(wm::kMaxRobotsPerTeam);
@@ -236,6 +237,7 @@ struct Planner::Impl {
   PlannerConfig config;
   wm::GameState game;
   PlayMemory memory;
+  bool own_motion = true;  // made from the config (not given by a test): reconfigure() may remake it
   std::unique_ptr<MotionPlanner> motion;
   bt::Tree tree;
   Situation situation;
@@ -378,6 +380,17 @@ PlannerOutput Planner::step(const PlannerInputs& inputs, time::Timestamp now) {
 
 void Planner::step(const PlannerInputs& inputs, time::Timestamp now, PlannerOutput& out) {
   impl_->step(inputs, now, out);
+}
+
+void Planner::reconfigure(const PlannerConfig& config) {
+  PlannerConfig next = config;
+  next.team = impl_->config.team;
+  const PlannerConfig& before = impl_->config;
+  const bool motion_changed = next.limits != before.limits || next.motion != before.motion ||
+                              next.robot_radius != before.robot_radius ||
+                              next.actuation_latency != before.actuation_latency;
+  impl_->config = next;
+  if (motion_changed && impl_->own_motion) impl_->motion = make_motion_planner(next);
 }
 
 void Planner::override_skill(std::uint32_t id, const std::optional<SkillOverride>& skill) {

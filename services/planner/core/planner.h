@@ -88,6 +88,8 @@ struct MotionLimits {
   double max_acceleration = 3.0;       // m/s^2
   double max_angular_speed = 6.0;      // rad/s
   double max_angular_acceleration = 30;  // rad/s^2
+
+  friend bool operator==(const MotionLimits&, const MotionLimits&) = default;
 };
 
 /// The skill layer: planner I's proportional controller with local detours, or planner II's trajectories
@@ -130,6 +132,11 @@ class Planner {
   PlannerOutput step(const PlannerInputs& inputs, time::Timestamp now);
   /// The same, into `out` (its vectors and strings are reused: no allocation once they are big enough).
   void step(const PlannerInputs& inputs, time::Timestamp now, PlannerOutput& out);
+
+  /// A run-time parameter change: from the next tick the planner works with `config` (same team). When the
+  /// skill layer's limits, kind, robot radius or actuation latency changed, the layer is made anew (its
+  /// trajectories restart from the robots' measured motion); roles, the game state and overrides stay.
+  void reconfigure(const PlannerConfig& config);
 
   /// Lab and test use: from the next tick robot `id` (0..15) runs `skill` instead of what the tree decides
   /// (the rule layer still applies: HALT, STOP speed, no kicks while not allowed); nullopt gives it back.

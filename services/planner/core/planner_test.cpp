@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -80,6 +81,23 @@ class PlannerRefereeTest : public ::testing::TestWithParam<Side> {
   Planner planner_;
   int tick_ = 0;
 };
+
+TEST_P(PlannerRefereeTest, AReconfiguredSpeedLimitHoldsFromTheNextTick) {
+  script_.command(RefereeCommand::kForceStart);
+  double fastest = 0;
+  for (int i = 0; i < 100; ++i) {
+    for (const RobotCommand& c : tick().commands) fastest = std::max(fastest, std::hypot(c.forward, c.left));
+  }
+  ASSERT_GT(fastest, 1.0) << "robots must go faster than the new limit before it";
+  PlannerConfig slower = testing::config_for(GetParam());
+  slower.limits.max_speed = 0.8;
+  planner_.reconfigure(slower);
+  for (int i = 0; i < 100; ++i) {
+    for (const RobotCommand& c : tick().commands) {
+      EXPECT_LE(std::hypot(c.forward, c.left), 0.8 + 1e-9) << "robot " << c.id << " at tick " << i;
+    }
+  }
+}
 
 TEST_P(PlannerRefereeTest, HaltStopsEveryRobot) {
   for (auto& r : script_.friends()) r.velocity = Vec2(1.0, 0.5);

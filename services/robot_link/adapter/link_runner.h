@@ -89,6 +89,8 @@ class LinkRunner {
   Status send_final_stop(time::Timestamp now_mono);
 
   const RobotLinkCore& core() const noexcept { return core_; }
+  /// See RobotLinkCore::reconfigure; the send period stays as started.
+  Status reconfigure(const CoreConfig& config) { return core_.reconfigure(config); }
   std::uint64_t missed_ticks() const noexcept { return missed_ticks_; }
 
  private:

@@ -11,6 +11,7 @@
 
 #include "libs/dds/health.h"
 #include "libs/dds/participant.h"
+#include "libs/service/parameters.h"
 #include "libs/time/clock.h"
 #include "libs/time/periodic_timer.h"
 #include "services/robot_link/adapter/convert.h"
@@ -179,6 +180,12 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
   }
   auto health = dds::HealthReporter::create(*participant, instance);
   if (!health) return health.error();
+  // Run-time parameters (the robots' limits): applied to the core between two ticks.
+  auto params = robot_link_runtime_parameters(config);
+  if (!params) return params.error();
+  auto parameters = service::LiveConfig<RobotLinkConfig>::create(*participant, instance, std::move(*params),
+                                                                  options.saved_parameters);
+  if (!parameters) return parameters.error();
 
   logger->info("{}: robot.commands on domain {} -> {} at {} Hz, watchdog {} ms", instance, options.domain_id,
                (*backend)->description(), config.send_rate, std::lround(config.command_timeout * 1000));
@@ -211,6 +218,13 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
 
   // Everything that arrived since the last tick, into the mailbox, just before the core runs.
   const auto before_tick = [&](time::Timestamp now_mono) {
+    if (std::optional<RobotLinkConfig> next = (*parameters)->poll()) {
+      if (Status applied = runner.reconfigure(core_config(*next)); !applied) {
+        logger->error("run-time parameters: {}", applied.error().message);
+      } else {
+        logger->info("run-time parameters changed");
+      }
+    }
     const std::int64_t now_unix_ns = wall_clock_unix_ns();
     if (auto sample = commands_reader->take_latest()) {
       if (team_matches(sample->data, team)) {

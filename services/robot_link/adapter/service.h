@@ -23,6 +23,7 @@ struct ServiceOptions {
   TeamColor team = TeamColor::kBlue;
   int domain_id = 0;
   dds::DiscoveryConfig discovery;
+  std::string saved_parameters;  // where run-time parameters are saved ("" none)
 };
 
 /// Runs until `shutdown` is requested; an error when setup fails (backend, DDS).

@@ -113,6 +113,12 @@ RobotLinkCore::RobotLinkCore(const CoreConfig& config) : config_(config) {
   if (Status valid = validate(config); !valid) throw std::invalid_argument(valid.error().message);
 }
 
+Status RobotLinkCore::reconfigure(const CoreConfig& config) {
+  if (Status valid = validate(config); !valid) return valid;
+  config_ = config;
+  return {};
+}
+
 RobotCommand RobotLinkCore::make_safe(const RobotCommand& wanted, RobotState& state, time::Duration dt) {
   const RobotLimits& limits = config_.limits;
   RobotCommand safe = wanted;

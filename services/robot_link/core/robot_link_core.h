@@ -153,6 +153,11 @@ class RobotLinkCore {
   const CoreCounters& counters() const noexcept { return counters_; }
   const CoreConfig& config() const noexcept { return config_; }
 
+  /// A run-time parameter change: from the next step on, `config` (validated first: an invalid one is
+  /// refused and the current one kept). What each robot was last sent is kept, so the acceleration limits
+  /// go on from it.
+  Status reconfigure(const CoreConfig& config);
+
  private:
   /// Per robot state between ticks: the velocity sent last (for the acceleration limiter).
   struct RobotState {

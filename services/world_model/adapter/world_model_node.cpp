@@ -16,7 +16,7 @@ using namespace std::chrono_literals;
 }  // namespace
 
 Result<WorldModelNode> WorldModelNode::create(dds::Participant& participant, const WorldModelServiceConfig& config,
-                                              time::Clock& wall_clock) {
+                                              time::Clock& wall_clock, const std::string& saved_parameters) {
   namespace topics = dds::topics;
   auto detections = participant.make_reader(topics::kVisionDetection);
   if (!detections) return detections.error();
@@ -30,10 +30,18 @@ Result<WorldModelNode> WorldModelNode::create(dds::Participant& participant, con
   if (!commands) return commands.error();
   auto writer = participant.make_writer(topics::kWorldState, config.team);
   if (!writer) return writer.error();
-  auto health = dds::HealthReporter::create(participant, "world_model/" + std::string(to_string(config.team)));
+  const std::string instance = "world_model/" + std::string(to_string(config.team));
+  auto health = dds::HealthReporter::create(participant, instance);
   if (!health) return health.error();
-  return WorldModelNode(config, wall_clock, std::move(*detections), std::move(*geometry), std::move(*referee),
-                        std::move(*feedback), std::move(*commands), std::move(*writer), std::move(*health));
+  auto params = world_model_runtime_parameters(config);
+  if (!params) return params.error();
+  auto live = service::LiveConfig<WorldModelServiceConfig>::create(participant, instance, std::move(*params),
+                                                                    saved_parameters);
+  if (!live) return live.error();
+  WorldModelNode node(config, wall_clock, std::move(*detections), std::move(*geometry), std::move(*referee),
+                      std::move(*feedback), std::move(*commands), std::move(*writer), std::move(*health));
+  node.parameters_ = std::move(*live);
+  return node;
 }
 
 WorldModelNode::WorldModelNode(const WorldModelServiceConfig& config, time::Clock& wall_clock,
@@ -59,6 +67,10 @@ WorldModelNode::WorldModelNode(const WorldModelServiceConfig& config, time::Cloc
 }
 
 std::size_t WorldModelNode::poll() {
+  if (std::optional<WorldModelServiceConfig> next = parameters_->poll()) {
+    config_ = *next;
+    model_.reconfigure(config_.core);
+  }
   for (auto& s : geometry_.take()) {
     Result<Geometry> geometry = from_idl(s.data);
     if (geometry) {

@@ -14,6 +14,8 @@
 //   node->run(shutdown);
 #pragma once
 
+#include <memory>
+
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -22,6 +24,7 @@
 #include "libs/common/shutdown.h"
 #include "libs/dds/health.h"
 #include "libs/dds/participant.h"
+#include "libs/service/parameters.h"
 #include "libs/time/clock.h"
 #include "services/world_model/core/world_model.h"
 #include "services/world_model/world_model_config.h"
@@ -30,8 +33,10 @@ namespace ssl::wm {
 
 class WorldModelNode {
  public:
+  /// Run-time parameters (world_model_runtime_parameters) arrive for "world_model/<team>" and apply from
+  /// the next frame; saved to `saved_parameters` when asked.
   static Result<WorldModelNode> create(dds::Participant& participant, const WorldModelServiceConfig& config,
-                                       time::Clock& wall_clock);
+                                       time::Clock& wall_clock, const std::string& saved_parameters = "");
 
   /// Processes inputs and publishes until `shutdown` is requested.
   void run(ShutdownSignal& shutdown);
@@ -51,6 +56,7 @@ class WorldModelNode {
   void report_health(time::Timestamp now);
 
   WorldModelServiceConfig config_;
+  std::unique_ptr<service::LiveConfig<WorldModelServiceConfig>> parameters_;
   time::Clock* clock_;
   WorldModel model_;
   dds::Reader<idl::vision::DetectionFrame> detections_;

@@ -52,6 +52,12 @@ void WorldModel::on_commands(std::span<const RobotCommand> commands, time::Times
   }
 }
 
+void WorldModel::reconfigure(const WorldModelConfig& config) {
+  const TeamColor team = config_.team;
+  config_ = config;
+  config_.team = team;
+}
+
 void WorldModel::on_detection(const DetectionFrame& frame, time::Timestamp now) {
   ++counters_.frames;
   const double sample = seconds(now - frame.sent_time);

@@ -98,6 +98,10 @@ class WorldModel {
   /// The commands we sent to OUR robots (local frame), taken as in force from `now`.
   void on_commands(std::span<const RobotCommand> commands, time::Timestamp now);
 
+  /// A run-time parameter change (same team): the thresholds read at every frame (confidence, possession,
+  /// timeouts, distances) apply from the next frame; the filters' noise models stay as they started.
+  void reconfigure(const WorldModelConfig& config);
+
   /// The world predicted to `now` (host wall clock), in the team frame.
   WorldState state(time::Timestamp now) const;
   /// The same, predicted to a vision-clock instant (tests, replays).
