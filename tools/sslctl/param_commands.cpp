@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
@@ -71,20 +72,42 @@ std::map<std::string, ParameterState> collect(dds::Reader<ParameterState>& reade
   return states;
 }
 
-}  // namespace
+/// A participant's reader of system.param_state (and, with `writer`, a writer of system.params); nullopt
+/// after printing why.
+struct ParamEndpoints {
+  dds::Reader<ParameterState> states;
+  std::optional<dds::Writer<idl::system::ParameterSet>> requests;
+};
 
-int param_list(const ParamOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err) {
+std::optional<ParamEndpoints> open_endpoints(const ParamOptions& options, bool writer, std::ostream& err) {
   auto participant = open_participant(options.dds.domain_id, options.dds.site, "sslctl/param");
   if (!participant) {
     err << "sslctl: " << participant.error().message << '\n';
-    return 1;
+    return std::nullopt;
   }
   auto reader = participant->make_reader(dds::topics::kSystemParamState);
   if (!reader) {
     err << "sslctl: " << reader.error().message << '\n';
-    return 1;
+    return std::nullopt;
   }
-  const auto states = collect(*reader, options.target, options.timeout_s, shutdown);
+  ParamEndpoints endpoints{std::move(*reader), std::nullopt};
+  if (writer) {
+    auto requests = participant->make_writer(dds::topics::kSystemParams);
+    if (!requests) {
+      err << "sslctl: " << requests.error().message << '\n';
+      return std::nullopt;
+    }
+    endpoints.requests.emplace(std::move(*requests));
+  }
+  return endpoints;
+}
+
+}  // namespace
+
+int param_list(const ParamOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err) {
+  auto endpoints = open_endpoints(options, false, err);
+  if (!endpoints) return 1;
+  const auto states = collect(endpoints->states, options.target, options.timeout_s, shutdown);
   if (!options.target.empty() && !states.contains(options.target)) {
     err << "sslctl: no parameters from '" << options.target << "' within " << options.timeout_s
         << " s (is it running on domain " << options.dds.domain_id << "?)\n";
@@ -106,17 +129,9 @@ int param_list(const ParamOptions& options, ShutdownSignal& shutdown, std::ostre
 }
 
 int param_get(const ParamOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err) {
-  auto participant = open_participant(options.dds.domain_id, options.dds.site, "sslctl/param");
-  if (!participant) {
-    err << "sslctl: " << participant.error().message << '\n';
-    return 1;
-  }
-  auto reader = participant->make_reader(dds::topics::kSystemParamState);
-  if (!reader) {
-    err << "sslctl: " << reader.error().message << '\n';
-    return 1;
-  }
-  const auto states = collect(*reader, options.target, options.timeout_s, shutdown);
+  auto endpoints = open_endpoints(options, false, err);
+  if (!endpoints) return 1;
+  const auto states = collect(endpoints->states, options.target, options.timeout_s, shutdown);
   const auto state = states.find(options.target);
   if (state == states.end()) {
     err << "sslctl: no parameters from '" << options.target << "' within " << options.timeout_s << " s\n";
@@ -158,17 +173,10 @@ int param_set(const ParamOptions& options, ShutdownSignal& shutdown, std::ostrea
   request.author("sslctl@" + std::to_string(getpid()));
   request.stamp_unix_ns(wall_clock_unix_ns());
 
-  auto participant = open_participant(options.dds.domain_id, options.dds.site, "sslctl/param");
-  if (!participant) {
-    err << "sslctl: " << participant.error().message << '\n';
-    return 1;
-  }
-  auto reader = participant->make_reader(dds::topics::kSystemParamState);
-  auto writer = participant->make_writer(dds::topics::kSystemParams);
-  if (!reader || !writer) {
-    err << "sslctl: " << (!reader ? reader.error().message : writer.error().message) << '\n';
-    return 1;
-  }
+  auto endpoints = open_endpoints(options, true, err);
+  if (!endpoints) return 1;
+  dds::Reader<ParameterState>* reader = &endpoints->states;
+  dds::Writer<idl::system::ParameterSet>* writer = &*endpoints->requests;
   // The target's answer carries our revision; its state before (transient local) tells it is there.
   const auto before = collect(*reader, options.target, options.timeout_s, shutdown);
   if (!before.contains(options.target)) {

@@ -3,6 +3,7 @@
 #include <httplib.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <atomic>
 #include <mutex>
 #include <thread>
@@ -467,8 +468,12 @@ void ConsoleService::run(ShutdownSignal& shutdown) {
   time::Timestamp next_health = monotonic.now();
   time::Timestamp next_report = monotonic.now();
   std::uint64_t frames_at_last_report = 0;
-  while (!shutdown.wait_for(period)) {
+  // A fixed grid of frame times (not a sleep after each frame), so that viewers get frame_rate frames a
+  // second; a late tick is not made up.
+  time::Timestamp next_frame = monotonic.now() + period;
+  while (!shutdown.wait_for(std::max(next_frame - monotonic.now(), std::chrono::nanoseconds(0)))) {
     const time::Timestamp tick = monotonic.now();
+    next_frame = std::max(next_frame + period, tick);
     const bool report_health = tick >= next_health;
     const bool send_report = tick >= next_report;
     s.poll(s.wall.now(), report_health, send_report);

@@ -26,30 +26,6 @@ std::optional<TeamColor> team_of(referee::Team team) {
   return std::nullopt;
 }
 
-/// The team a command is for (kickoff, free kick, placement, ...), if any.
-std::optional<TeamColor> team_of(Command command) {
-  switch (command) {
-    case Command::kPrepareKickoffYellow:
-    case Command::kPreparePenaltyYellow:
-    case Command::kDirectFreeYellow:
-    case Command::kIndirectFreeYellow:
-    case Command::kTimeoutYellow:
-    case Command::kGoalYellow:
-    case Command::kBallPlacementYellow:
-      return TeamColor::kYellow;
-    case Command::kPrepareKickoffBlue:
-    case Command::kPreparePenaltyBlue:
-    case Command::kDirectFreeBlue:
-    case Command::kIndirectFreeBlue:
-    case Command::kTimeoutBlue:
-    case Command::kGoalBlue:
-    case Command::kBallPlacementBlue:
-      return TeamColor::kBlue;
-    default:
-      return std::nullopt;
-  }
-}
-
 json team_or_null(std::optional<TeamColor> team) {
   return team ? json(team_name(*team)) : json(nullptr);
 }
@@ -136,7 +112,7 @@ bool ConsoleState::on_referee(const referee::RefereeState& state, time::Timestam
   report_.on_referee(state, now);
   const std::optional<referee::RefereeState> previous = std::exchange(referee_, state);
   if (!previous) {
-    log({now, LogKind::kCommand, std::string(referee::to_string(state.command)), team_of(state.command)});
+    log({now, LogKind::kCommand, std::string(referee::to_string(state.command)), referee::team_of(state.command)});
     return true;
   }
   if (state.command_counter != previous->command_counter || state.command != previous->command) {
@@ -145,7 +121,7 @@ bool ConsoleState::on_referee(const referee::RefereeState& state, time::Timestam
         (state.command == Command::kBallPlacementBlue || state.command == Command::kBallPlacementYellow)) {
       text += " to (" + fixed(state.designated_position->x(), 2) + ", " + fixed(state.designated_position->y(), 2) + ")";
     }
-    log({now, LogKind::kCommand, std::move(text), team_of(state.command)});
+    log({now, LogKind::kCommand, std::move(text), referee::team_of(state.command)});
   }
   for (const auto& [team, before, after] :
        {std::tuple{TeamColor::kYellow, previous->yellow.score, state.yellow.score},
@@ -379,7 +355,7 @@ json ConsoleState::keep_out_json() const {
   if (!ball) return zones;
   const double radius = has_field_ ? field_.max_robot_radius : FieldGeometry{}.max_robot_radius;
   const Command command = referee_->command;
-  const std::optional<TeamColor> team = team_of(command);
+  const std::optional<TeamColor> team = referee::team_of(command);
   auto circle = [&](const char* who) {
     const geom::Circle zone = ball_keep_out(*ball, radius);
     zones.push_back({{"kind", "circle"}, {"center", point(zone.center)}, {"radius", zone.radius}, {"team", who}});

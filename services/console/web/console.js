@@ -77,6 +77,7 @@
   };
   const hook = {
     frames: 0,        // number of `frame` events received
+    draws: 0,         // number of canvas redraws (bench/console_load: the page's frames per second)
     drawn: [],        // what the last draw put on the canvas
     toCanvas: (x, y) => toCanvas(x, y),
     toField: (px, py) => toField(px, py),
@@ -570,6 +571,7 @@
   }
 
   function draw() {
+    hook.draws += 1;
     ctx.setTransform(view.dpr, 0, 0, view.dpr, 0, 0);
     ctx.clearRect(0, 0, view.w, view.h);
     drawField();

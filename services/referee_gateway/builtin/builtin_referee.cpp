@@ -23,34 +23,6 @@ using geom::Vec2;
 using time::duration_from_seconds;
 using time::Timestamp;
 
-/// The team a command is for (kicker, placer, team in timeout); nullopt for team-less commands.
-std::optional<TeamColor> team_of(Command command) {
-  switch (command) {
-    case Command::kPrepareKickoffYellow:
-    case Command::kPreparePenaltyYellow:
-    case Command::kDirectFreeYellow:
-    case Command::kIndirectFreeYellow:
-    case Command::kTimeoutYellow:
-    case Command::kGoalYellow:
-    case Command::kBallPlacementYellow:
-      return TeamColor::kYellow;
-    case Command::kPrepareKickoffBlue:
-    case Command::kPreparePenaltyBlue:
-    case Command::kDirectFreeBlue:
-    case Command::kIndirectFreeBlue:
-    case Command::kTimeoutBlue:
-    case Command::kGoalBlue:
-    case Command::kBallPlacementBlue:
-      return TeamColor::kBlue;
-    case Command::kHalt:
-    case Command::kStop:
-    case Command::kNormalStart:
-    case Command::kForceStart:
-      return std::nullopt;
-  }
-  return std::nullopt;
-}
-
 bool is_direct_free(Command command) {
   return command == Command::kDirectFreeYellow || command == Command::kDirectFreeBlue;
 }

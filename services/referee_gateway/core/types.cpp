@@ -155,6 +155,33 @@ std::string_view to_string(Command command) { return name_of(kCommandNames, comm
 std::string_view to_string(Stage stage) { return name_of(kStageNames, stage); }
 std::string_view to_string(GameEventType type) { return name_of(kGameEventNames, type); }
 
+std::optional<TeamColor> team_of(Command command) {
+  switch (command) {
+    case Command::kPrepareKickoffYellow:
+    case Command::kPreparePenaltyYellow:
+    case Command::kDirectFreeYellow:
+    case Command::kIndirectFreeYellow:
+    case Command::kTimeoutYellow:
+    case Command::kGoalYellow:
+    case Command::kBallPlacementYellow:
+      return TeamColor::kYellow;
+    case Command::kPrepareKickoffBlue:
+    case Command::kPreparePenaltyBlue:
+    case Command::kDirectFreeBlue:
+    case Command::kIndirectFreeBlue:
+    case Command::kTimeoutBlue:
+    case Command::kGoalBlue:
+    case Command::kBallPlacementBlue:
+      return TeamColor::kBlue;
+    case Command::kHalt:
+    case Command::kStop:
+    case Command::kNormalStart:
+    case Command::kForceStart:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 bool is_foul(GameEventType type) {
   using T = GameEventType;
   switch (type) {

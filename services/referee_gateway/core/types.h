@@ -29,6 +29,7 @@
 #include <string_view>
 #include <vector>
 
+#include "libs/common/team.h"
 #include "libs/geometry/vec2.h"
 #include "libs/time/time.h"
 
@@ -151,6 +152,10 @@ inline constexpr int kGameEventTypeCount = 48;  // kUnknown included
 std::string_view to_string(Command command);
 std::string_view to_string(Stage stage);
 std::string_view to_string(GameEventType type);
+/// The team a command is for (kicker, placer, team in timeout, scorer); nullopt for HALT, STOP,
+/// NORMAL_START and FORCE_START.
+std::optional<TeamColor> team_of(Command command);
+
 /// A foul of the rules (section "Fouls"): stopping fouls, non-stopping fouls and their "skipped" variants
 /// (raised with advantage). Not fouls: ball out, goals, placements, no progress, cards, substitutions.
 bool is_foul(GameEventType type);
