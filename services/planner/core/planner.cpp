@@ -227,7 +227,9 @@ struct Planner::Impl {
         memory(cfg.role_hysteresis),
         own_motion(motion_planner == nullptr),
         motion(motion_planner ? std::move(motion_planner) : make_motion_planner(cfg)),
-        tree(bt::reactive_selector("Root", {referee_override(), base_strategy()})) {
+        tree(bt::reactive_selector("Root", {referee_override(), cfg.strategy == Strategy::kWander
+                                                                    ? run("Wander", play_wander)
+                                                                    : base_strategy()})) {
     robots.reserve(wm::kMaxRobotsPerTeam);
     enemies.reserve(wm::kMaxRobotsPerTeam);
   }

@@ -96,10 +96,16 @@ struct MotionLimits {
 /// along a searched path (trajectory_motion.h).
 enum class MotionControl { kSimple, kTrajectory };
 
+/// What the team does in normal play (NORMAL_START, FORCE_START); the referee override above it is the
+/// same for all. kBase: seeds/001's base strategy; kWander: every robot tours waypoints on the field, ball
+/// or not (the referee demos: watch each command take over).
+enum class Strategy { kBase, kWander };
+
 struct PlannerConfig {
   TeamColor team = TeamColor::kBlue;
   MotionLimits limits;
   MotionControl motion = MotionControl::kTrajectory;
+  Strategy strategy = Strategy::kBase;
   // s from the planner's tick until its command acts on the robot (DDS, robot_link, radio): the trajectory
   // skill layer plans from where the last command will have taken the robot by then. world.state is
   // already predicted to now (world_model compensates the vision delay).

@@ -82,6 +82,32 @@ class PlannerRefereeTest : public ::testing::TestWithParam<Side> {
   int tick_ = 0;
 };
 
+TEST_P(PlannerRefereeTest, TheWanderStrategyToursWaypointsAndYieldsToTheReferee) {
+  PlannerConfig config = testing::config_for(GetParam());
+  config.strategy = Strategy::kWander;
+  Planner planner(config);
+  script_.command(RefereeCommand::kForceStart);
+  PlannerOutput out = planner.step(script_.inputs(), testing::at_tick(0));
+  EXPECT_EQ(out.play, "wander");
+  const wm::Field field = script_.field();
+  for (const RobotCommand& c : out.commands) {
+    const MotionIntent* intent = planner.last_intent(c.id);
+    ASSERT_NE(intent, nullptr);
+    EXPECT_EQ(intent->role, "wanderer");
+    EXPECT_LT(std::abs(intent->target.x()), field.size().field_length / 2 - field.size().penalty_area_depth);
+    EXPECT_LT(std::abs(intent->target.y()), field.size().field_width / 2);
+  }
+  // A robot on its waypoint gets the next one.
+  const std::uint32_t id = out.commands.front().id;
+  const Vec2 first = planner.last_intent(id)->target;
+  script_.robot(id)->position = first;
+  planner.step(script_.inputs(), testing::at_tick(1));
+  EXPECT_GT((planner.last_intent(id)->target - first).norm(), 0.1);
+  // The referee override stays above the strategy.
+  script_.command(RefereeCommand::kStop);
+  EXPECT_EQ(planner.step(script_.inputs(), testing::at_tick(2)).play, "stop");
+}
+
 TEST_P(PlannerRefereeTest, AReconfiguredSpeedLimitHoldsFromTheNextTick) {
   script_.command(RefereeCommand::kForceStart);
   double fastest = 0;

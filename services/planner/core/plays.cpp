@@ -412,6 +412,34 @@ const wm::RobotState* find_robot(const Situation& s, std::uint32_t id) {
   return nullptr;
 }
 
+void play_wander(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  begin(s, out, "wander");
+  constexpr double kArrived = 0.15;  // m: the waypoint is reached, take the next
+  const double half_length = s.field.size().field_length / 2 - s.field.size().penalty_area_depth - 0.4;
+  const double half_width = s.field.size().field_width / 2 - 0.3;
+  // Waypoint `leg` of robot `id`: a fixed sequence (a multiplicative hash), the same in every run.
+  const auto waypoint = [&](std::uint32_t id, std::uint32_t leg) {
+    const std::uint32_t h = (id * 2654435761U) ^ (leg * 2246822519U);
+    const double u = static_cast<double>(h & 0xFFFF) / 0xFFFF;
+    const double v = static_cast<double>((h >> 16) & 0xFFFF) / 0xFFFF;
+    return Vec2((2 * u - 1) * half_length, (2 * v - 1) * half_width);
+  };
+  for (const wm::RobotState& robot : s.robots) {
+    if (robot.id >= memory.wander_leg.size()) continue;
+    std::uint32_t& leg = memory.wander_leg[robot.id];
+    if ((waypoint(robot.id, leg) - robot.position).norm() < kArrived) ++leg;
+    MotionIntent intent;
+    intent.active = true;
+    intent.target = waypoint(robot.id, leg);
+    intent.orientation = std::atan2(intent.target.y() - robot.position.y(), intent.target.x() - robot.position.x());
+    intent.max_speed = s.config->limits.max_speed;
+    intent.role = "wanderer";
+    intent.tactic = "wander";
+    intent.skill = "move_to";
+    write(s, out, robot.id, intent);
+  }
+}
+
 void play_halt(const Situation& s, TeamIntents& out) {
   begin(s, out, "halt");
   for (const wm::RobotState& robot : s.robots) {

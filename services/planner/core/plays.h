@@ -56,6 +56,7 @@ struct PlayMemory {
   StableChoice kicker;  // kickoff / penalty / free kick taker and the attacker in normal play
   StableChoice placer;
   PlacePhase place_phase = PlacePhase::kApproach;
+  std::array<std::uint32_t, wm::kMaxRobotsPerTeam> wander_leg{};  // play_wander: each robot's waypoint
   std::optional<std::uint32_t> current_placer;
 };
 
@@ -67,6 +68,9 @@ struct TeamIntents {
 
 // ---- the plays (each fills `out` for every robot in `s.robots`) ----------------------------------------
 void play_halt(const Situation& s, TeamIntents& out);
+/// The wander strategy: each robot drives to a waypoint of its own (a fixed pseudo-random sequence per
+/// robot id, inside the field and clear of both defense areas) and takes the next one on arrival.
+void play_wander(const Situation& s, PlayMemory& memory, TeamIntents& out);
 /// STOP (and GOAL): keep the STOP limits, pre-positioning for `s.next_command`.
 void play_stop(const Situation& s, PlayMemory& memory, TeamIntents& out, std::string_view play = "stop");
 void play_timeout(const Situation& s, PlayMemory& memory, TeamIntents& out);
