@@ -370,6 +370,31 @@ TEST(Units, EveryUnitPassesSystemdAnalyzeVerify) {
   }
 }
 
+TEST(Units, AServiceThatKeepsFailingIsRestartedWithAGrowingWait) {
+  TempDir prefix;
+  install_to(prefix.path);
+  const fs::path backoff = prefix.path / "opt/ssl-stack/bin/ssl-restart-backoff";
+  ASSERT_TRUE(fs::exists(backoff));
+  for (const std::string& unit : kUnits) {
+    if (unit.ends_with(".target")) continue;
+    EXPECT_EQ(unit_value(prefix.path / "lib/systemd/system" / unit, "ExecStartPre"), backoff.string() + " %n") << unit;
+  }
+  // Starts within a minute: the first two at once, then 1, 2, 4, 8 s, never more.
+  const fs::path runtime = prefix.path / "run";  // a second TempDir would be the same directory
+  std::string waits;
+  for (int start = 0; start < 7; ++start) {
+    const ShellRun run = shell("RUNTIME_DIRECTORY='" + runtime.string() + "' '" + backoff.string() +
+                               "' --print ssl-planner@blue.service");
+    ASSERT_EQ(run.status, 0) << run.output;
+    waits += run.output.substr(0, run.output.find('\n')) + " ";
+  }
+  EXPECT_EQ(waits, "0 0 1 2 4 8 8 ");
+  // Another unit keeps its own count.
+  EXPECT_EQ(shell("RUNTIME_DIRECTORY='" + runtime.string() + "' '" + backoff.string() +
+                  "' --print ssl-world-model@blue.service").output,
+            "0\n");
+}
+
 // Runs `ExecStart` of `unit` (instance `instance`) exactly as written, with `env`, in namespace `ns`.
 Result<ChildProcess> start_unit(const NetNamespace& ns, const fs::path& unit, const std::map<std::string, std::string>& env,
                                 const std::string& instance) {
