@@ -82,8 +82,9 @@ function waitForSample(topic, accept, { team, timeoutS = 10 } = {}) {
 /// Every robot's position (vision frame) over `seconds`, from exact vision: Map "team/id" -> [{t, x, y}].
 async function trackRobots(seconds) {
   const tracks = new Map();
-  const end = Date.now() + seconds * 1000;
+  let end;  // counted from the first frame: sslctl's discovery may take a while on a loaded machine
   await waitForSample('vision.detection', (frame) => {
+    end ??= Date.now() + seconds * 1000;
     const t = frame.capture_unix_ns / 1e9;
     for (const [team, robots] of [['blue', frame.robots_blue], ['yellow', frame.robots_yellow]]) {
       for (const robot of robots) {
@@ -247,7 +248,7 @@ test('the space bar engages the e-stop and never releases it', async () => {
 
 test('a parameter edit reaches the planner, a bad one is refused with the reason, and it saves', async () => {
   const row = page.locator('tr.param-row[data-target="planner/blue"][data-key="planner.limits.max_speed"]');
-  await row.waitFor({ timeout: 10_000 });
+  await row.waitFor({ timeout: 30_000 });
   await row.locator('.param-value').fill('2.25');
   await row.locator('.param-value').press('Enter');
   await page.waitForFunction(() => document.querySelector(
