@@ -31,10 +31,6 @@ constexpr auto kStreamPing = std::chrono::milliseconds(1000);  // an idle stream
 constexpr std::string_view kTokenHeader = "X-Console-Token";
 constexpr auto kParameterAnswerTimeout = std::chrono::seconds(3);
 
-std::int64_t wall_clock_unix_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 template <typename T>
 struct TeamReaders {
@@ -314,7 +310,7 @@ void ConsoleService::Impl::routes() {
     operator_action(req, res, [&] {
       auto action = parse_param_action(req.body);
       if (!action) return reply_error(res, 400, action.error().message);
-      const std::int64_t now = wall_clock_unix_ns();
+      const std::int64_t now = wall.now().nanoseconds();
       parameter_request(to_idl(*action, static_cast<std::uint64_t>(now), who(req), now), req, res);
     });
   });
@@ -323,7 +319,7 @@ void ConsoleService::Impl::routes() {
     operator_action(req, res, [&] {
       auto action = parse_param_save_action(req.body);
       if (!action) return reply_error(res, 400, action.error().message);
-      const std::int64_t now = wall_clock_unix_ns();
+      const std::int64_t now = wall.now().nanoseconds();
       parameter_request(save_request(*action, static_cast<std::uint64_t>(now), who(req), now), req, res);
     });
   });
