@@ -31,7 +31,7 @@ install(FILES ${CMAKE_SOURCE_DIR}/README.md DESTINATION ${SSL_INSTALL_DOCDIR})
 set(SSL_UNIT_TEMPLATES
     ssl-discovery.service ssl-simulator.service ssl-vision-gateway.service ssl-referee-gateway.service
     ssl-robot-link@.service ssl-world-model@.service ssl-planner@.service ssl-console.service ssl-field.target
-    ssl-team@.target ssl-coach.target)
+    ssl-team@.target ssl-coach.target ssl-latency.slice ssl-bulk.slice)
 install(CODE "
   string(REGEX REPLACE \"/+$\" \"\" root \"\${CMAKE_INSTALL_PREFIX}\")
   set(SSL_BIN_DIR \"\${root}/${SSL_INSTALL_BINDIR}\")

@@ -21,8 +21,9 @@ packages=(
   clang libclang-rt-14-dev
   # process and network tests
   iproute2 procps python3
-  # multi-host tests: network namespaces joined by a bridge, multicast filtered on it
-  nftables
+  # multi-host tests: network namespaces joined by a bridge, multicast filtered on it; a host's own systemd
+  # (systemd-nspawn boots one in a namespace: the units restart a killed service)
+  nftables systemd-container
   # browser tests of the console: Debian's chromium driven by playwright-core (tests/browser, from npm)
   chromium
 )

@@ -57,14 +57,22 @@ Status HealthReporter::publish(const HealthReport& report) {
   sample.uptime_ns(now - start_unix_ns_);
   sample.stamp_unix_ns(now);
   Status written = writer_.write(sample);
-  // The service manager hears the same: up once the loop reports, alive while it keeps reporting.
-  if (!ready_sent_) {
-    service_manager::ready(report.status);
+  // The service manager hears the same: up once the loop reports and hears its inputs (or the grace
+  // passed), alive while it keeps reporting.
+  const bool matched = !inputs_matched_ || inputs_matched_();
+  const bool grace_over = std::chrono::nanoseconds(now - start_unix_ns_) >= ready_grace_;
+  if (!ready_sent_ && (matched || grace_over)) {
+    service_manager::ready(matched ? report.status : report.status + " (up without its inputs: none heard yet)");
     ready_sent_ = true;
   } else {
-    service_manager::alive(report.status);
+    service_manager::alive(ready_sent_ ? report.status : report.status + " (waiting for its inputs)");
   }
   return written;
+}
+
+void HealthReporter::ready_when(std::function<bool()> inputs_matched, std::chrono::nanoseconds grace) {
+  inputs_matched_ = std::move(inputs_matched);
+  ready_grace_ = grace;
 }
 
 }  // namespace ssl::dds

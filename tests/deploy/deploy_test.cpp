@@ -27,6 +27,9 @@
 #include <thread>
 #include <vector>
 
+#include "libs/common/team.h"
+#include "libs/dds/participant.h"
+#include "libs/dds/topics.h"
 #include "tests/support/netns.h"
 #include "tests/support/process.h"
 
@@ -41,7 +44,7 @@ using ::testing::Not;
 
 const std::vector<std::string> kExecutables{"simulator",   "vision_gateway", "referee_gateway", "world_model",
                                             "planner",     "robot_link",     "console",        "sslctl"};
-const std::vector<std::string> kUnits{"ssl-discovery.service",     "ssl-simulator.service",
+const std::vector<std::string> kUnits{"ssl-latency.slice", "ssl-bulk.slice", "ssl-discovery.service", "ssl-simulator.service",
                                       "ssl-vision-gateway.service", "ssl-referee-gateway.service",
                                       "ssl-robot-link@.service",   "ssl-world-model@.service",
                                       "ssl-planner@.service",      "ssl-console.service",
@@ -139,13 +142,15 @@ std::vector<std::string> expand_exec_start(const std::string& line, const std::m
   return argv;
 }
 
-// The service manager's end of NOTIFY_SOCKET: a datagram socket of this test.
+// The service manager's end of NOTIFY_SOCKET: a datagram socket of this test. A socket's path has at most
+// 107 bytes (sun_path): a longer one is refused, never cut short.
 class NotifySocket {
  public:
   explicit NotifySocket(const fs::path& path) : path_(path) {
     fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
     sockaddr_un address{};
     address.sun_family = AF_UNIX;
+    if (path.string().size() >= sizeof address.sun_path) return;
     std::snprintf(address.sun_path, sizeof address.sun_path, "%s", path.c_str());
     bound_ = ::bind(fd_, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0;
   }
@@ -203,25 +208,51 @@ bool healthy(const nlohmann::json& report) {
 struct NotifyCase {
   std::string program;
   std::vector<std::string> args;  // private ports: the league's may be in use on this machine
+  std::string input;              // the topic it waits to hear before READY ("" none); the test writes it
+  int domain = 160;               // its own for those with an input: no other case's service may feed it
 };
 
 void PrintTo(const NotifyCase& c, std::ostream* os) { *os << c.program; }
 
 class ServiceManagerTest : public ::testing::TestWithParam<NotifyCase> {};
 
-TEST_P(ServiceManagerTest, AServiceSaysReadyOnceThenFeedsTheWatchdogFromItsLoop) {
-  TempDir dir;
-  NotifySocket socket(dir.path / "notify");
-  ASSERT_TRUE(socket.bound());
-  ::setenv("NOTIFY_SOCKET", (dir.path / "notify").c_str(), 1);
+TEST_P(ServiceManagerTest, AServiceSaysReadyOnceItHearsItsInputsThenFeedsTheWatchdogFromItsLoop) {
+  const fs::path socket_path = fs::temp_directory_path() / ("ssl_notify_" + std::to_string(::getpid()));
+  NotifySocket socket(socket_path);
+  ASSERT_TRUE(socket.bound()) << socket_path;
+  ::setenv("NOTIFY_SOCKET", socket_path.c_str(), 1);
   auto child = ChildProcess::start(bin_dir() / GetParam().program, GetParam().args);
   ::unsetenv("NOTIFY_SOCKET");
   ASSERT_TRUE(child) << child.error().message;
 
   auto first = socket.receive(20s);
   ASSERT_TRUE(first) << "no notification within 20 s; stderr:\n" << child->drain_stderr();
-  EXPECT_THAT(*first, HasSubstr("READY=1"));
   EXPECT_THAT(*first, HasSubstr("STATUS="));
+  std::shared_ptr<void> input_writer;  // the service's input, written from here once it waits for it
+  std::optional<dds::Participant> participant;
+  if (!GetParam().input.empty()) {
+    EXPECT_THAT(*first, Not(HasSubstr("READY=1"))) << "READY before its input " << GetParam().input << " was heard";
+    EXPECT_THAT(*first, HasSubstr("waiting for its inputs"));
+    auto created = dds::Participant::create({.domain_id = GetParam().domain, .name = "deploy_test/input"});
+    ASSERT_TRUE(created) << created.error().message;
+    participant.emplace(std::move(*created));
+    ASSERT_TRUE(dds::visit_topic(GetParam().input, [&](const auto& spec) {
+      auto writer = participant->make_writer(spec, spec.scope == dds::TopicScope::kTeam
+                                                       ? std::optional<TeamColor>(TeamColor::kBlue)
+                                                       : std::nullopt);
+      ASSERT_TRUE(writer) << writer.error().message;
+      input_writer = std::make_shared<std::decay_t<decltype(*writer)>>(std::move(*writer));
+    }));
+    std::optional<std::string> ready;
+    while (!ready) {
+      auto next = socket.receive(15s);
+      ASSERT_TRUE(next) << "no READY after its input appeared";
+      if (next->find("READY=1") != std::string::npos) ready = next;
+    }
+    EXPECT_THAT(*ready, Not(HasSubstr("without its inputs"))) << "READY by the grace period, not the match";
+  } else {
+    EXPECT_THAT(*first, HasSubstr("READY=1"));
+  }
   int watchdogs = 0;
   while (watchdogs < 3) {
     auto next = socket.receive(5s);
@@ -240,11 +271,40 @@ INSTANTIATE_TEST_SUITE_P(
                                  "42161", "--blue-port", "42162", "--yellow-port", "42163", "--grsim-port", "42164"}},
         NotifyCase{"vision_gateway", {"--domain", "160", "--vision-port", "42165"}},
         NotifyCase{"referee_gateway", {"--domain", "160", "--referee-port", "42166"}},
-        NotifyCase{"world_model", {"--domain", "160", "--team", "blue"}},
-        NotifyCase{"planner", {"--domain", "160", "--team", "blue"}},
-        NotifyCase{"robot_link", {"--domain", "160", "--team", "blue", "--sim-port", "42167"}},
+        NotifyCase{"world_model", {"--domain", "166", "--team", "blue"}, "vision.detection", 166},
+        NotifyCase{"planner", {"--domain", "167", "--team", "blue"}, "world.state", 167},
+        NotifyCase{"robot_link", {"--domain", "168", "--team", "blue", "--sim-port", "42167"}, "robot.commands", 168},
         NotifyCase{"console", {"--domain", "160", "--http-port", "42172"}}),
     [](const ::testing::TestParamInfo<NotifyCase>& param) { return param.param.program; });
+
+TEST(ServiceManager, AServiceWhoseInputsNeverAppearIsUpAfterItsGraceAndSaysSo) {
+  const fs::path socket_path = fs::temp_directory_path() / ("ssl_notify_" + std::to_string(::getpid()));
+  NotifySocket socket(socket_path);
+  ASSERT_TRUE(socket.bound()) << socket_path;
+  ::setenv("NOTIFY_SOCKET", socket_path.c_str(), 1);
+  // A planner alone on its domain: no world model will ever be heard.
+  auto child = ChildProcess::start(bin_dir() / "planner", {"--domain", "169", "--team", "blue"});
+  ::unsetenv("NOTIFY_SOCKET");
+  ASSERT_TRUE(child) << child.error().message;
+  const auto started = std::chrono::steady_clock::now();
+  std::optional<std::string> ready;
+  int waiting = 0;
+  while (!ready) {
+    auto next = socket.receive(15s);
+    ASSERT_TRUE(next) << "no READY within the grace; stderr:\n" << child->drain_stderr();
+    if (next->find("READY=1") != std::string::npos) {
+      ready = next;
+    } else {
+      EXPECT_THAT(*next, HasSubstr("waiting for its inputs"));
+      ++waiting;
+    }
+  }
+  const double after_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  EXPECT_THAT(*ready, HasSubstr("up without its inputs"));
+  EXPECT_GE(waiting, 5) << "READY came before the 10 s grace, after " << after_s << " s";
+  child->signal(SIGTERM);
+  EXPECT_EQ(child->wait(15s), 0) << child->drain_stderr();
+}
 
 TEST(ServiceManager, WithoutANotifySocketTheServicesRunAsBefore) {
   // Every other process test of the project starts services without NOTIFY_SOCKET; this one says so and
@@ -370,13 +430,28 @@ TEST(Units, EveryUnitPassesSystemdAnalyzeVerify) {
   }
 }
 
+TEST(Units, TheVisionToRadioPathRunsInAHeavierSliceThanTheRest) {
+  TempDir prefix;
+  install_to(prefix.path);
+  const fs::path units = prefix.path / "lib/systemd/system";
+  for (const std::string& unit : kUnits) {
+    if (!unit.ends_with(".service")) continue;
+    const bool on_path = unit == "ssl-vision-gateway.service" || unit == "ssl-world-model@.service" ||
+                         unit == "ssl-planner@.service" || unit == "ssl-robot-link@.service";
+    EXPECT_EQ(unit_value(units / unit, "Slice"), on_path ? "ssl-latency.slice" : "ssl-bulk.slice") << unit;
+  }
+  const int latency = std::stoi(unit_value(units / "ssl-latency.slice", "CPUWeight"));
+  const int bulk = std::stoi(unit_value(units / "ssl-bulk.slice", "CPUWeight"));
+  EXPECT_GE(latency, 10 * bulk);
+}
+
 TEST(Units, AServiceThatKeepsFailingIsRestartedWithAGrowingWait) {
   TempDir prefix;
   install_to(prefix.path);
   const fs::path backoff = prefix.path / "opt/ssl-stack/bin/ssl-restart-backoff";
   ASSERT_TRUE(fs::exists(backoff));
   for (const std::string& unit : kUnits) {
-    if (unit.ends_with(".target")) continue;
+    if (!unit.ends_with(".service")) continue;
     EXPECT_EQ(unit_value(prefix.path / "lib/systemd/system" / unit, "ExecStartPre"), backoff.string() + " %n") << unit;
   }
   // Starts within a minute: the first two at once, then 1, 2, 4, 8 s, never more.

@@ -38,6 +38,8 @@ Result<PlannerNode> PlannerNode::create(dds::Participant& participant, const Pla
   const std::string instance = "planner/" + std::string(to_string(config.team));
   auto health = dds::HealthReporter::create(participant, instance);
   if (!health) return health.error();
+  // Up (READY) once it hears a world model.
+  health->ready_when([reader = *world] { return reader.counters().matched_writers > 0; });
   auto params = planner_runtime_parameters(config);
   if (!params) return params.error();
   PlannerNode node(config, wall_clock, std::move(*world), std::move(*referee), std::move(*geometry),

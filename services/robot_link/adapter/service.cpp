@@ -180,6 +180,8 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
   }
   auto health = dds::HealthReporter::create(*participant, instance);
   if (!health) return health.error();
+  // Up (READY) once it hears its team's planner.
+  health->ready_when([reader = *commands_reader] { return reader.counters().matched_writers > 0; });
   // Run-time parameters (the robots' limits): applied to the core between two ticks.
   auto params = robot_link_runtime_parameters(config);
   if (!params) return params.error();

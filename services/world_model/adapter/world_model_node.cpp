@@ -33,6 +33,8 @@ Result<WorldModelNode> WorldModelNode::create(dds::Participant& participant, con
   const std::string instance = "world_model/" + std::string(to_string(config.team));
   auto health = dds::HealthReporter::create(participant, instance);
   if (!health) return health.error();
+  // Up (READY) once it hears a vision gateway.
+  health->ready_when([reader = *detections] { return reader.counters().matched_writers > 0; });
   auto params = world_model_runtime_parameters(config);
   if (!params) return params.error();
   auto live = service::LiveConfig<WorldModelServiceConfig>::create(participant, instance, std::move(*params),
