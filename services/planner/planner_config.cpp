@@ -25,8 +25,9 @@ Fields<PlannerConfig> core_fields() {
           .values({{"simple", MotionControl::kSimple}, {"trajectory", MotionControl::kTrajectory}})
           .doc("skill layer: simple (proportional, local detours) or trajectory (time-optimal, path search)"),
       config::optional_field("strategy", &PlannerConfig::strategy, Strategy::kBase)
-          .values({{"base", Strategy::kBase}, {"wander", Strategy::kWander}})
-          .doc("normal play: base (seeds/001) or wander (every robot tours waypoints: the referee demos)"),
+          .values({{"base", Strategy::kBase}, {"ball_chaser", Strategy::kBallChaser}, {"wander", Strategy::kWander}})
+          .doc("normal play: base (seeds/001), ball_chaser (every field player runs for the ball, the nearest "
+               "shoots: the baseline to beat) or wander (every robot tours waypoints: the referee demos)"),
       field("actuation_latency", &PlannerConfig::actuation_latency).unit("s").range(0, 0.2)
           .doc("from a tick until its command acts on the robot; trajectories plan from where the robot will be"),
       field("robot_radius", &PlannerConfig::robot_radius).unit("m").range(0.05, 0.2),

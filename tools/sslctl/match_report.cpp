@@ -91,6 +91,7 @@ void MatchReportBuilder::on_referee(const referee::RefereeState& state, time::Ti
     line->yellow_cards = info->yellow_cards;
     line->red_cards = info->red_cards;
   }
+  play_.on_referee(activity_of(state.command) == Activity::kInPlay, state.blue_team_on_positive_half);
   report_.final_stage = state.stage;
   if (state.stage == referee::Stage::kPostGame) report_.final_whistle = true;
   report_.duration = at;
@@ -118,8 +119,18 @@ void MatchReportBuilder::on_ball(const geom::Vec2& ball, time::Timestamp t) {
   }
 }
 
+void MatchReportBuilder::on_frame(const geom::Vec2& ball, std::span<const PlayAccount::Robot> robots,
+                                  time::Timestamp t) {
+  if (last_ball_time_ && t < *last_ball_time_) return;
+  ++report_.robot_frames;
+  play_.on_frame(ball, robots, t);
+  on_ball(ball, t);
+}
+
 MatchReport MatchReportBuilder::report() const {
   MatchReport out = report_;
+  out.blue.play = play_.team(TeamColor::kBlue);
+  out.yellow.play = play_.team(TeamColor::kYellow);
   for (const auto& [key, count] : event_counts_) {
     out.events.push_back({.type = key.first, .team = key.second, .count = count});
   }
@@ -171,6 +182,19 @@ std::string to_text(const MatchReport& r) {
   out << "fouls: yellow " << r.yellow.fouls << ", blue " << r.blue.fouls << "; cards: yellow " << r.yellow.yellow_cards
       << " yellow / " << r.yellow.red_cards << " red, blue " << r.blue.yellow_cards << " yellow / " << r.blue.red_cards
       << " red\n";
+  if (r.robot_frames > 0) {
+    const double possessed = r.yellow.play.possession + r.blue.play.possession;
+    for (auto [name, team] : {std::pair{"yellow", &r.yellow}, std::pair{"blue", &r.blue}}) {
+      const TeamPlay& p = team->play;
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "play %s: passes %u tried, %u completed (%.0f %%); shots %u, %u on target; kicks %u; "
+                    "possession %.0f %%\n",
+                    name, p.passes_tried, p.passes_completed, percent(p.passes_completed, p.passes_tried), p.shots,
+                    p.shots_on_target, p.kicks, percent(p.possession, possessed));
+      out << text;
+    }
+  }
   out << "stages:";
   for (const MatchReport::StageChange& stage : r.stages) {
     out << ' ' << clock_text(stage.at) << ' ' << referee::to_string(stage.stage) << ',';
@@ -191,11 +215,18 @@ std::string to_json(const MatchReport& r) {
   out["source"] = r.source;
   out["referee_samples"] = r.referee_samples;
   out["ball_samples"] = r.ball_samples;
+  out["robot_frames"] = r.robot_frames;
   out["duration_s"] = r.duration;
   for (auto [key, line] : {std::pair{"yellow", &r.yellow}, std::pair{"blue", &r.blue}}) {
     out["teams"][key] = {{"name", line->name},           {"score", line->score},
                          {"fouls", line->fouls},         {"yellow_cards", line->yellow_cards},
                          {"red_cards", line->red_cards}};
+    if (r.robot_frames > 0) {
+      const TeamPlay& p = line->play;
+      out["teams"][key]["play"] = {{"passes_tried", p.passes_tried}, {"passes_completed", p.passes_completed},
+                                   {"shots", p.shots},               {"shots_on_target", p.shots_on_target},
+                                   {"kicks", p.kicks},               {"possession_s", p.possession}};
+    }
   }
   out["goals"] = json::array();
   for (const MatchReport::Goal& goal : r.goals) {

@@ -19,6 +19,7 @@
 //   MatchReportBuilder builder;
 //   builder.on_referee(state, t);    // every referee sample, in time order
 //   builder.on_ball(position, t);    // every ball observation (m, vision frame), in time order
+//   builder.on_frame(ball, robots, t);  // or the ball with every robot seen: also passes, shots, possession
 //   std::cout << to_text(builder.report());
 #pragma once
 
@@ -26,12 +27,14 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "libs/geometry/vec2.h"
 #include "libs/time/time.h"
 #include "services/referee_gateway/core/types.h"
+#include "tools/sslctl/play_account.h"
 
 namespace ssl::sslctl {
 
@@ -42,6 +45,7 @@ struct MatchReport {
     std::uint32_t fouls = 0;  // the referee's foul counter at the end
     std::uint32_t yellow_cards = 0;
     std::uint32_t red_cards = 0;
+    TeamPlay play;  // passes, shots, possession (PlayAccount), from frames with robots
   };
   struct Goal {
     double at = 0;  // s since the first referee sample
@@ -72,6 +76,7 @@ struct MatchReport {
   std::string source;  // the referee's source_identifier
   std::uint64_t referee_samples = 0;
   std::uint64_t ball_samples = 0;
+  std::uint64_t robot_frames = 0;  // frames with robots (on_frame): the play figures count
   double duration = 0;  // s from the first to the last referee sample
   TeamLine yellow;
   TeamLine blue;
@@ -97,6 +102,11 @@ class MatchReportBuilder {
   void on_referee(const referee::RefereeState& state, time::Timestamp t);
   /// One ball observation at `t`, metres in any fixed frame.
   void on_ball(const geom::Vec2& ball, time::Timestamp t);
+  /// The ball and every robot seen at `t` (the same frame): on_ball, and the play account's passes, shots
+  /// and possession.
+  void on_frame(const geom::Vec2& ball, std::span<const PlayAccount::Robot> robots, time::Timestamp t);
+  /// The field's length and goal width (m), for shots.
+  void set_field(double length, double goal_width) { play_.set_field(length, goal_width); }
   bool final_whistle() const { return report_.final_whistle; }
   /// Counts a packet that did not decode.
   void on_malformed() { ++report_.malformed; }
@@ -119,6 +129,7 @@ class MatchReportBuilder {
   // The stall being measured: where the ball rests since when (only while in play).
   std::optional<std::pair<geom::Vec2, time::Timestamp>> stall_anchor_;
   std::optional<time::Timestamp> last_ball_time_;
+  PlayAccount play_;
 };
 
 /// Human-readable, one fact per line.

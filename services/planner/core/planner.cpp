@@ -198,6 +198,15 @@ bt::NodePtr base_strategy() {
 }
 // clang-format on
 
+bt::NodePtr strategy_tree(Strategy strategy) {
+  switch (strategy) {
+    case Strategy::kBallChaser: return run("BallChaser", play_ball_chaser);
+    case Strategy::kWander: return run("Wander", play_wander);
+    case Strategy::kBase: break;
+  }
+  return base_strategy();
+}
+
 TreeNodeInfo::Status to_info(bt::NodeStatus status) {
   switch (status) {
     case bt::NodeStatus::kRunning: return TreeNodeInfo::Status::kRunning;
@@ -227,9 +236,7 @@ struct Planner::Impl {
         memory(cfg.role_hysteresis),
         own_motion(motion_planner == nullptr),
         motion(motion_planner ? std::move(motion_planner) : make_motion_planner(cfg)),
-        tree(bt::reactive_selector("Root", {referee_override(), cfg.strategy == Strategy::kWander
-                                                                    ? run("Wander", play_wander)
-                                                                    : base_strategy()})) {
+        tree(bt::reactive_selector("Root", {referee_override(), strategy_tree(cfg.strategy)})) {
     robots.reserve(wm::kMaxRobotsPerTeam);
     enemies.reserve(wm::kMaxRobotsPerTeam);
   }

@@ -97,9 +97,10 @@ struct MotionLimits {
 enum class MotionControl { kSimple, kTrajectory };
 
 /// What the team does in normal play (NORMAL_START, FORCE_START); the referee override above it is the
-/// same for all. kBase: seeds/001's base strategy; kWander: every robot tours waypoints on the field, ball
-/// or not (the referee demos: watch each command take over).
-enum class Strategy { kBase, kWander };
+/// same for all. kBase: seeds/001's base strategy; kBallChaser: every field player runs for the ball and the
+/// nearest shoots (the baseline the base strategy must beat); kWander: every robot tours waypoints on the
+/// field, ball or not (the referee demos: watch each command take over).
+enum class Strategy { kBase, kBallChaser, kWander };
 
 struct PlannerConfig {
   TeamColor team = TeamColor::kBlue;

@@ -108,6 +108,42 @@ TEST_P(PlannerRefereeTest, TheWanderStrategyToursWaypointsAndYieldsToTheReferee)
   EXPECT_EQ(planner.step(script_.inputs(), testing::at_tick(2)).play, "stop");
 }
 
+TEST_P(PlannerRefereeTest, TheBallChaserSendsTheNearestToShootAndEveryOtherFieldPlayerToTheBall) {
+  PlannerConfig config = testing::config_for(GetParam());
+  config.strategy = Strategy::kBallChaser;
+  Planner planner(config);
+  script_.command(RefereeCommand::kForceStart);
+  const PlannerOutput out = planner.step(script_.inputs(), testing::at_tick(0));
+  EXPECT_EQ(out.play, "ball_chaser");
+  const Vec2 ball = script_.ball();
+  std::optional<std::uint32_t> nearest;
+  for (const RobotCommand& c : out.commands) {
+    if (c.id == testing::kOurKeeper) continue;
+    if (!nearest || (script_.robot(c.id)->position - ball).norm() < (script_.robot(*nearest)->position - ball).norm()) {
+      nearest = c.id;
+    }
+  }
+  ASSERT_TRUE(nearest);
+  int chasers = 0;
+  for (const RobotCommand& c : out.commands) {
+    const MotionIntent* intent = planner.last_intent(c.id);
+    ASSERT_NE(intent, nullptr) << "robot " << c.id;
+    if (c.id == testing::kOurKeeper) {
+      EXPECT_EQ(intent->role, "goalkeeper");
+    } else if (c.id == *nearest) {
+      EXPECT_EQ(intent->role, "attacker");
+      EXPECT_EQ(intent->skill, "shoot");
+    } else {
+      EXPECT_EQ(intent->role, "chaser");
+      EXPECT_LT((intent->target - ball).norm(), 0.5) << "robot " << c.id << " does not go for the ball";
+      ++chasers;
+    }
+  }
+  EXPECT_EQ(chasers, static_cast<int>(out.commands.size()) - 2);
+  script_.command(RefereeCommand::kStop);
+  EXPECT_EQ(planner.step(script_.inputs(), testing::at_tick(1)).play, "stop");
+}
+
 TEST_P(PlannerRefereeTest, AReconfiguredSpeedLimitHoldsFromTheNextTick) {
   script_.command(RefereeCommand::kForceStart);
   double fastest = 0;

@@ -758,6 +758,31 @@ void strategy_approach(const Situation& s, std::uint32_t attacker, TeamIntents& 
   write(s, out, attacker, intent);
 }
 
+/// m (centre to ball) where a chaser that is not the shooter stops: as near as two of them fit beside the
+/// shooter, so that they crowd the ball without pushing each other into it.
+constexpr double kChaserDistance = 0.35;
+
+void play_ball_chaser(const Situation& s, PlayMemory& memory, TeamIntents& out) {
+  begin(s, out, "ball_chaser");
+  Ids reserved;
+  write_keeper(s, base_intent(s, "defend"), false, reserved, out);
+  if (!s.ball_known) return;
+  const std::optional<std::uint32_t> shooter = choose_closest(s, memory.kicker, s.ball);
+  if (shooter && !reserved.contains(*shooter)) {
+    strategy_approach(s, *shooter, out);
+    out.robots[*shooter].tactic = "chase";
+    reserved.add(*shooter);
+  }
+  for (const wm::RobotState& robot : s.robots) {
+    if (reserved.contains(robot.id)) continue;
+    const Vec2 from_ball = geom::normalized_or(robot.position - s.ball, Vec2(-1, 0));
+    MotionIntent intent = go_to_point(s, robot, {.point = s.ball + from_ball * kChaserDistance});
+    intent.tactic = "chase";
+    intent.role = "chaser";
+    write(s, out, robot.id, intent);
+  }
+}
+
 void strategy_support(const Situation& s, PlayMemory& memory, std::optional<std::uint32_t> attacker,
                       TeamIntents& out) {
   MotionIntent tmpl = base_intent(s, "support");

@@ -71,6 +71,9 @@ void play_halt(const Situation& s, TeamIntents& out);
 /// The wander strategy: each robot drives to a waypoint of its own (a fixed pseudo-random sequence per
 /// robot id, inside the field and clear of both defense areas) and takes the next one on arrival.
 void play_wander(const Situation& s, PlayMemory& memory, TeamIntents& out);
+/// The ball_chaser strategy, the baseline to beat: the referee's goalkeeper guards the goal; every other
+/// robot runs for the ball, and the one nearest to it shoots at the goal (no passes, no positions).
+void play_ball_chaser(const Situation& s, PlayMemory& memory, TeamIntents& out);
 /// STOP (and GOAL): keep the STOP limits, pre-positioning for `s.next_command`.
 void play_stop(const Situation& s, PlayMemory& memory, TeamIntents& out, std::string_view play = "stop");
 void play_timeout(const Situation& s, PlayMemory& memory, TeamIntents& out);

@@ -8,12 +8,13 @@
 namespace ssl::planner::testing {
 namespace {
 
-PlannerConfig planner_config(TeamColor team, const sim::FieldGeometry& field, MotionControl motion) {
+PlannerConfig planner_config(TeamColor team, const PlannedMatchOptions& options) {
   PlannerConfig config;
   config.team = team;
-  config.motion = motion;
+  config.motion = options.motion;
+  config.strategy = team == TeamColor::kBlue ? options.blue_strategy : options.yellow_strategy;
   config.actuation_latency = 0;  // in lockstep a command acts on the simulated robot at once
-  config.default_field = field;
+  config.default_field = options.field;
   return config;
 }
 
@@ -46,8 +47,8 @@ PlannedMatch::PlannedMatch(const PlannedMatchOptions& options)
       start_(harness_.now()),
       next_tick_(harness_.now()) {
   yellow_model_.on_geometry(wm::testing::from_sim(harness_.sim().geometry()));
-  teams_.push_back({TeamColor::kBlue, Planner(planner_config(TeamColor::kBlue, options.field, options.motion)), {}});
-  teams_.push_back({TeamColor::kYellow, Planner(planner_config(TeamColor::kYellow, options.field, options.motion)), {}});
+  teams_.push_back({TeamColor::kBlue, Planner(planner_config(TeamColor::kBlue, options)), {}});
+  teams_.push_back({TeamColor::kYellow, Planner(planner_config(TeamColor::kYellow, options)), {}});
   scripted_.blue_team_on_positive_half = options.blue_on_positive_half;
 }
 

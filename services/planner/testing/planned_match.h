@@ -39,6 +39,8 @@ struct PlannedMatchOptions {
   /// With a profile, the built-in referee runs the match and script() is not used.
   std::optional<referee::RefereeProfile> referee;
   MotionControl motion = PlannerConfig().motion;  // both teams' skill layer
+  Strategy blue_strategy = Strategy::kBase;       // each team's strategy in normal play
+  Strategy yellow_strategy = Strategy::kBase;
 };
 
 /// A referee command issued `at` seconds after the start.

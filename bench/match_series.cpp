@@ -1,0 +1,368 @@
+// Play quality over many matches (./ssl bench): N seeded whole 6 v 6 matches per pairing of strategies, each
+// in lockstep in one process (planner::testing::PlannedMatch: the Bullet simulator with realistic vision,
+// both teams' world models and planners, the built-in referee), spread over the cores (one child process per
+// match). The referee runs the `strict_ai` profile's rules (every foul refereed, cards, defense areas, no
+// progress) with three changes so that matches run unattended and comparably: restarts continue without an
+// operator (auto_continue), the half-time break is 10 s (nothing plays in it), and no early end or extra time
+// (a match is always two full halves). As in `./ssl up`, the simulator places the ball for the referee.
+// The strategies swap colours every other seed.
+//
+// Per pairing it prints, per strategy and per match on average: goals for / against, passes tried /
+// completed, shots / on target, possession share (sslctl's PlayAccount on the ground truth, the kicker's
+// intent from its planner's skill), and every game event by type, fouls marked, "avoidable" ones (keep-out,
+// too fast in STOP, defense area, double touch, crash) counted apart. Budget (../shared/design.md): base
+// beats ball_chaser by >= 3 goals per match over 20 seeds, >= 70 % of passes completed, 0 avoidable fouls.
+//
+//   build/bench/match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...]
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "services/planner/testing/planned_match.h"
+#include "tools/sslctl/match_report.h"
+
+namespace {
+
+using ssl::TeamColor;
+using ssl::planner::Strategy;
+using ssl::planner::testing::PlannedMatch;
+using ssl::referee::GameEventType;
+
+constexpr std::pair<const char*, Strategy> kStrategies[] = {
+    {"base", Strategy::kBase}, {"ball_chaser", Strategy::kBallChaser}, {"wander", Strategy::kWander}};
+
+std::optional<Strategy> strategy_named(const std::string& name) {
+  for (const auto& [n, s] : kStrategies) {
+    if (name == n) return s;
+  }
+  return std::nullopt;
+}
+
+/// Fouls a team commits by its own play and can always avoid (rules: keep-out, STOP speed, defense areas,
+/// double touch, crashes).
+bool avoidable(GameEventType type) {
+  switch (type) {
+    case GameEventType::kDefenderTooCloseToKickPoint:
+    case GameEventType::kBotTooFastInStop:
+    case GameEventType::kDefenderInDefenseArea:
+    case GameEventType::kDefenderInDefenseAreaPartially:
+    case GameEventType::kAttackerTouchedBallInDefenseArea:
+    case GameEventType::kAttackerTooCloseToDefenseArea:
+    case GameEventType::kAttackerDoubleTouchedBall:
+    case GameEventType::kBotCrashUnique:
+    case GameEventType::kBotCrashUniqueSkipped:
+    case GameEventType::kBotCrashDrawn:
+      return true;
+    default:
+      return false;
+  }
+}
+
+struct Pairing {
+  std::string a;
+  std::string b;
+};
+
+struct Job {
+  std::size_t pairing = 0;
+  std::uint64_t seed = 0;
+};
+
+/// Skill names that tell the play account what a kick meant.
+ssl::sslctl::PlayAccount::Intent intent_of(const std::string& skill) {
+  using Intent = ssl::sslctl::PlayAccount::Intent;
+  if (skill == "pass") return Intent::kPass;
+  if (skill == "shoot") return Intent::kShot;
+  if (skill == "clear_ball") return Intent::kClear;
+  return Intent::kUnknown;
+}
+
+/// One match, in this (child) process: its report as JSON, plus which colour strategy A played.
+std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
+  auto profile = ssl::referee::load_referee_profile("strict_ai");
+  if (!profile) {
+    std::fprintf(stderr, "match_series: %s\n", profile.error().message.c_str());
+    std::exit(1);
+  }
+  profile->game.half_duration = half;
+  profile->game.half_time = 10;
+  profile->game.auto_continue = true;
+  profile->game.early_end_goals = 0;
+  profile->game.extra_time.enabled = false;
+  const bool a_is_blue = seed % 2 == 0;
+  const Strategy a = *strategy_named(pairing.a);
+  const Strategy b = *strategy_named(pairing.b);
+  const ssl::sim::FieldGeometry field = ssl::sim::FieldGeometry::division_b();
+  PlannedMatch match({.field = field,
+                      .robots = 6,
+                      .seed = seed,
+                      .referee = *profile,
+                      .blue_strategy = a_is_blue ? a : b,
+                      .yellow_strategy = a_is_blue ? b : a});
+  ssl::sslctl::MatchReportBuilder report;
+  report.set_field(field.field_length, field.goal_width);
+  std::vector<ssl::sslctl::PlayAccount::Robot> robots;
+  match.start_match();
+  const bool finished = match.run_until_final_whistle(
+      std::chrono::hours(1), [&](const ssl::sim::DetectionFrame&, const ssl::sim::WorldSnapshot& truth) {
+        report.on_referee(match.builtin_referee()->state(), truth.time);
+        robots.clear();
+        for (const ssl::sim::RobotState& robot : truth.robots) {
+          ssl::sslctl::PlayAccount::Robot seen{.team = robot.key.team, .id = robot.key.id, .position = robot.position};
+          for (const ssl::planner::RoleInfo& role : match.output(robot.key.team).roles) {
+            if (role.robot_id == robot.key.id) seen.intent = intent_of(role.skill);
+          }
+          robots.push_back(seen);
+        }
+        report.on_frame(truth.ball.position.head<2>(), robots, truth.time);
+      });
+  nlohmann::json out = nlohmann::json::parse(ssl::sslctl::to_json(report.report()));
+  out["a_is_blue"] = a_is_blue;
+  out["seed"] = seed;
+  out["finished"] = finished;
+  return out.dump();
+}
+
+/// Runs `play` in a child process; its JSON line, or nullopt when it failed.
+std::optional<std::string> play_in_child(const Pairing& pairing, std::uint64_t seed, double half) {
+  int fds[2];
+  if (pipe(fds) != 0) return std::nullopt;
+  const pid_t pid = fork();
+  if (pid < 0) return std::nullopt;
+  if (pid == 0) {
+    close(fds[0]);
+    const std::string line = play(pairing, seed, half) + "\n";
+    std::size_t written = 0;
+    while (written < line.size()) {
+      const ssize_t n = write(fds[1], line.data() + written, line.size() - written);
+      if (n <= 0) _exit(1);
+      written += static_cast<std::size_t>(n);
+    }
+    _exit(0);
+  }
+  close(fds[1]);
+  std::string text;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = read(fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || text.empty()) return std::nullopt;
+  return text;
+}
+
+/// One strategy's sums over the matches of a pairing.
+struct Totals {
+  double goals_for = 0, goals_against = 0;
+  double passes_tried = 0, passes_completed = 0, shots = 0, on_target = 0, possession = 0, possession_all = 0;
+  std::map<std::string, double> events;  // by type
+  double fouls = 0, avoidable_fouls = 0;
+  double wins = 0, draws = 0;
+};
+
+void add(Totals& t, const nlohmann::json& match, const char* us, const char* them) {
+  const nlohmann::json& mine = match["teams"][us];
+  const nlohmann::json& theirs = match["teams"][them];
+  const double scored = mine["score"].get<double>();
+  const double conceded = theirs["score"].get<double>();
+  t.goals_for += scored;
+  t.goals_against += conceded;
+  t.wins += scored > conceded ? 1 : 0;
+  t.draws += scored == conceded ? 1 : 0;
+  if (mine.contains("play")) {
+    t.passes_tried += mine["play"]["passes_tried"].get<double>();
+    t.passes_completed += mine["play"]["passes_completed"].get<double>();
+    t.shots += mine["play"]["shots"].get<double>();
+    t.on_target += mine["play"]["shots_on_target"].get<double>();
+    t.possession += mine["play"]["possession_s"].get<double>();
+    t.possession_all += mine["play"]["possession_s"].get<double>() + theirs["play"]["possession_s"].get<double>();
+  }
+  for (const nlohmann::json& event : match["game_events"]) {
+    if (event["team"].get<std::string>() != us) continue;
+    const std::string type = event["type"].get<std::string>();
+    const double count = event["count"].get<double>();
+    t.events[type] += count;
+    const auto parsed = ssl::referee::parse_game_event_type(type);
+    if (parsed && ssl::referee::is_foul(*parsed)) t.fouls += count;
+    if (parsed && avoidable(*parsed)) t.avoidable_fouls += count;
+  }
+}
+
+double ratio(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0; }
+
+void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& matches) {
+  Totals a, b;
+  for (const nlohmann::json& match : matches) {
+    const bool a_blue = match["a_is_blue"].get<bool>();
+    add(a, match, a_blue ? "blue" : "yellow", a_blue ? "yellow" : "blue");
+    add(b, match, a_blue ? "yellow" : "blue", a_blue ? "blue" : "yellow");
+  }
+  const double n = static_cast<double>(std::max<std::size_t>(matches.size(), 1));
+  std::printf("\n%s vs %s: %zu matches\n", pairing.a.c_str(), pairing.b.c_str(), matches.size());
+  std::printf("  %-32s %14s %14s\n", "per match", pairing.a.c_str(), pairing.b.c_str());
+  const auto row = [&](const char* name, double va, double vb, const char* format = "%14.2f") {
+    std::printf("  %-32s ", name);
+    std::printf(format, va);
+    std::printf(" ");
+    std::printf(format, vb);
+    std::printf("\n");
+  };
+  row("goals for", a.goals_for / n, b.goals_for / n);
+  row("goals against", a.goals_against / n, b.goals_against / n);
+  row("wins / draws (matches)", a.wins, b.wins, "%14.0f");
+  row("passes tried", a.passes_tried / n, b.passes_tried / n);
+  row("passes completed", a.passes_completed / n, b.passes_completed / n);
+  row("passes completed (%)", ratio(a.passes_completed, a.passes_tried), ratio(b.passes_completed, b.passes_tried),
+      "%14.0f");
+  row("shots", a.shots / n, b.shots / n);
+  row("shots on target", a.on_target / n, b.on_target / n);
+  row("possession (%)", ratio(a.possession, a.possession_all), ratio(b.possession, b.possession_all), "%14.0f");
+  row("fouls", a.fouls / n, b.fouls / n);
+  row("avoidable fouls (!!)", a.avoidable_fouls / n, b.avoidable_fouls / n);
+  std::set<std::string> types;
+  for (const auto& [type, count] : a.events) types.insert(type);
+  for (const auto& [type, count] : b.events) types.insert(type);
+  std::printf("  game events by type (per match; * foul, !! avoidable foul)\n");
+  for (const std::string& type : types) {
+    const auto parsed = ssl::referee::parse_game_event_type(type);
+    const char* mark = parsed && avoidable(*parsed) ? "!!" : parsed && ssl::referee::is_foul(*parsed) ? "* " : "  ";
+    std::printf("  %s %-29s %14.2f %14.2f\n", mark, type.c_str(), a.events[type] / n, b.events[type] / n);
+  }
+  if (pairing.a == "base" && pairing.b == "ball_chaser") {
+    const double margin = (a.goals_for - a.goals_against) / n;
+    std::printf("  budget: base beats ball_chaser by >= 3 goals per match: %+.2f -> %s\n", margin,
+                margin >= 3 ? "PASS" : "MISS");
+  }
+  if (pairing.a == "base") {
+    const double completed = ratio(a.passes_completed, a.passes_tried);
+    std::printf("  budget: >= 70 %% of base's passes completed: %.0f %% of %.0f -> %s\n", completed, a.passes_tried,
+                a.passes_tried > 0 && completed >= 70 ? "PASS" : "MISS");
+    std::printf("  budget: 0 avoidable fouls by base: %.0f -> %s\n", a.avoidable_fouls,
+                a.avoidable_fouls == 0 ? "PASS" : "MISS");
+  }
+}
+
+[[noreturn]] void usage_error(const std::string& message) {
+  std::fprintf(stderr, "match_series: %s (see --help)\n", message.c_str());
+  std::exit(2);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::uint64_t seeds = 20;
+  std::uint64_t first_seed = 1;
+  double half = 300;
+  unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<Pairing> pairings;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage_error(arg + " needs a value");
+      return argv[++i];
+    };
+    const auto number = [&](double low, double high) {
+      const std::string text = value();
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (!end || *end != '\0' || !(v >= low && v <= high)) {
+        usage_error(arg + " takes a number in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
+      }
+      return v;
+    };
+    if (arg == "--help") {
+      std::printf(
+          "usage: match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...]\n"
+          "  plays N seeded whole 6 v 6 matches (default 20; seeds S, S+1, ...) per pairing of strategies (base,\n"
+          "  ball_chaser, wander; default base:ball_chaser and base:base) in lockstep under the strict_ai rules,\n"
+          "  halves of --half s of playing time (default 300), J matches at a time (default: the cores), and\n"
+          "  prints goals, passes, shots, possession and game events per strategy and match, with the budgets\n");
+      return 0;
+    }
+    if (arg == "--seeds") {
+      seeds = static_cast<std::uint64_t>(number(1, 1000));
+    } else if (arg == "--first-seed") {
+      first_seed = static_cast<std::uint64_t>(number(0, 1e15));
+    } else if (arg == "--half") {
+      half = number(1, 3600);
+    } else if (arg == "--jobs") {
+      jobs = static_cast<unsigned>(number(1, 256));
+    } else if (arg == "--pairing") {
+      const std::string text = value();
+      const std::size_t colon = text.find(':');
+      if (colon == std::string::npos || !strategy_named(text.substr(0, colon)) ||
+          !strategy_named(text.substr(colon + 1))) {
+        usage_error("--pairing takes A:B, each base, ball_chaser or wander");
+      }
+      pairings.push_back({text.substr(0, colon), text.substr(colon + 1)});
+    } else {
+      usage_error("unknown argument '" + arg + "'");
+    }
+  }
+  if (pairings.empty()) pairings = {{"base", "ball_chaser"}, {"base", "base"}};
+
+  std::vector<Job> queue;
+  for (std::size_t p = 0; p < pairings.size(); ++p) {
+    for (std::uint64_t s = 0; s < seeds; ++s) queue.push_back({p, first_seed + s});
+  }
+  std::printf("match series: %zu pairings x %llu seeds of 6 v 6 (division B), halves of %.0f s, strict_ai rules "
+              "(auto continue, no early end or extra time), %u at a time\n",
+              pairings.size(), static_cast<unsigned long long>(seeds), half, jobs);
+  std::fflush(stdout);
+  std::vector<std::vector<nlohmann::json>> results(pairings.size());
+  std::mutex results_mutex;
+  std::atomic<std::size_t> next{0};
+  std::atomic<int> failed{0};
+  const auto started = std::chrono::steady_clock::now();
+  std::vector<std::thread> workers;
+  for (unsigned w = 0; w < jobs; ++w) {
+    workers.emplace_back([&] {
+      for (std::size_t j = next++; j < queue.size(); j = next++) {
+        const Job& job = queue[j];
+        const std::optional<std::string> line = play_in_child(pairings[job.pairing], job.seed, half);
+        std::lock_guard lock(results_mutex);
+        if (!line) {
+          ++failed;
+          std::fprintf(stderr, "match_series: the match of seed %llu (%s vs %s) failed\n",
+                       static_cast<unsigned long long>(job.seed), pairings[job.pairing].a.c_str(),
+                       pairings[job.pairing].b.c_str());
+          continue;
+        }
+        nlohmann::json match = nlohmann::json::parse(*line);
+        const bool a_blue = match["a_is_blue"].get<bool>();
+        std::printf("  seed %3llu %s vs %s: %s %u : %u %s%s\n", static_cast<unsigned long long>(job.seed),
+                    pairings[job.pairing].a.c_str(), pairings[job.pairing].b.c_str(), a_blue ? "(a blue)" : "(a yellow)",
+                    match["teams"][a_blue ? "blue" : "yellow"]["score"].get<unsigned>(),
+                    match["teams"][a_blue ? "yellow" : "blue"]["score"].get<unsigned>(),
+                    match["finished"].get<bool>() ? "" : " (no final whistle)", "");
+        std::fflush(stdout);
+        results[job.pairing].push_back(std::move(match));
+      }
+    });
+  }
+  for (std::thread& worker : workers) worker.join();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  for (std::size_t p = 0; p < pairings.size(); ++p) print_pairing(pairings[p], results[p]);
+  std::printf("\n%zu matches in %.0f s of wall time\n", queue.size(), wall);
+  return failed == 0 ? 0 : 1;
+}

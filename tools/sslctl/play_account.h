@@ -1,0 +1,95 @@
+// PlayAccount: how each team played, from observations of the ball and the robots (any one fixed frame, e.g.
+// SSL-Vision's, metres) and the referee state: passes tried and completed, shots and shots on target,
+// possession. Pure: the caller feeds samples in time order with their times (a live vision stream, a log
+// file or a lockstep match's ground truth). Part of the match report (match_report.h).
+//
+// Rules of the account (only while the ball is in play: NORMAL_START, FORCE_START, free kicks):
+//  * a touch: a robot centre within kTouchDistance of the ball centre; the nearest such robot is the ball's
+//    last toucher, and its team is in possession until another team's robot touches the ball. Possession is
+//    time in play, by the last toucher's team (before the first touch, nobody's).
+//  * a kick: the ball's speed rises by at least kKickSpeedGain between two samples to at least
+//    kKickMinSpeed (and below kMaxBallSpeed: faster is the ball put somewhere else), a robot within
+//    kKickReach: the nearest one kicked it. The first sample after play starts is not compared.
+//  * a shot: a kick whose line crosses the kicker's opponent's goal line within kShotWidthMargin of the goal
+//    mouth, towards it (unless its kicker meant a pass or a clearance); on target when it crosses inside the
+//    mouth (posts excluded by the ball's radius). Without the field's size (set_field) no kick is a shot.
+//  * a pass: any other kick, unless the observer says the kicker meant something else (Intent::kClear, or
+//    Intent::kShot: a shooter's kick that misses the goal's direction is a deflection, not a pass).
+//    It is completed when the next robot to touch the ball is a teammate of the kicker (not the kicker),
+//    failed when it is an opponent, the kicker itself, or play stops first.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "libs/common/team.h"
+#include "libs/geometry/vec2.h"
+#include "libs/time/time.h"
+
+namespace ssl::sslctl {
+
+struct TeamPlay {
+  std::uint32_t passes_tried = 0;
+  std::uint32_t passes_completed = 0;
+  std::uint32_t shots = 0;
+  std::uint32_t shots_on_target = 0;
+  std::uint32_t kicks = 0;        // every kick in play (passes, shots, clearances)
+  double possession = 0;          // s in play with this team's robot the last to touch the ball
+};
+
+class PlayAccount {
+ public:
+  static constexpr double kTouchDistance = 0.13;   // m: robot radius 0.09 + ball radius 0.0215 + 0.02
+  static constexpr double kKickReach = 0.25;       // m: robot centre to ball when a kick is recognised
+  static constexpr double kKickSpeedGain = 1.0;    // m/s between two samples
+  static constexpr double kKickMinSpeed = 1.5;     // m/s
+  static constexpr double kMaxBallSpeed = 12.0;    // m/s: faster between two samples is a teleport, not a kick
+  static constexpr double kShotWidthMargin = 0.3;  // m beside the goal mouth a shot may cross
+  static constexpr double kBallRadius = 0.0215;    // m
+
+  /// What the kicking robot meant, when the observer knows it (a lockstep match reads the planner's skill).
+  enum class Intent { kUnknown, kPass, kShot, kClear };
+
+  struct Robot {
+    TeamColor team = TeamColor::kBlue;
+    std::uint32_t id = 0;
+    geom::Vec2 position = geom::Vec2::Zero();  // m
+    Intent intent = Intent::kUnknown;
+  };
+
+  /// The field's length and goal width (m): goals lie at x = +-length / 2.
+  void set_field(double length, double goal_width);
+  /// The referee's state: whether the ball is in play, and which half blue defends.
+  void on_referee(bool in_play, std::optional<bool> blue_on_positive_half);
+  /// One observation of the ball and every robot seen at `t` (older samples are ignored).
+  void on_frame(const geom::Vec2& ball, std::span<const Robot> robots, time::Timestamp t);
+
+  const TeamPlay& team(TeamColor color) const { return color == TeamColor::kBlue ? blue_ : yellow_; }
+
+ private:
+  struct OpenPass {
+    TeamColor team;
+    std::uint32_t kicker;
+  };
+  TeamPlay& team_of(TeamColor color) { return color == TeamColor::kBlue ? blue_ : yellow_; }
+  void on_kick(const Robot& kicker, const geom::Vec2& ball, const geom::Vec2& velocity);
+  bool is_shot(TeamColor team, const geom::Vec2& ball, const geom::Vec2& velocity, bool& on_target) const;
+
+  TeamPlay blue_;
+  TeamPlay yellow_;
+  std::optional<double> field_length_;
+  double goal_width_ = 0;
+  bool in_play_ = false;
+  std::optional<bool> blue_on_positive_half_;
+  std::optional<time::Timestamp> last_frame_;
+  bool compare_speed_ = false;  // false for the first frame in play
+  geom::Vec2 last_ball_ = geom::Vec2::Zero();
+  double last_speed_ = 0;
+  std::optional<TeamColor> possession_;
+  std::optional<OpenPass> open_pass_;
+  std::optional<std::uint32_t> last_toucher_id_;
+  std::optional<TeamColor> last_toucher_team_;
+};
+
+}  // namespace ssl::sslctl

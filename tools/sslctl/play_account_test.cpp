@@ -1,0 +1,125 @@
+// The play account on scripted frames (division B: 9 m long, goals 1 m wide, blue defending the negative
+// half): a ball rolled from robot to robot at explicit times, as a camera would see it every 10 ms.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "tools/sslctl/play_account.h"
+
+namespace ssl::sslctl {
+namespace {
+
+using geom::Vec2;
+using Robot = PlayAccount::Robot;
+
+const time::Timestamp kStart = time::Timestamp::from_seconds(1'000.0);
+
+class PlayAccountTest : public ::testing::Test {
+ protected:
+  PlayAccountTest() {
+    account_.set_field(9.0, 1.0);
+    account_.on_referee(true, false);
+  }
+  /// `seconds` of frames every 10 ms with the ball moving from `from` at `velocity` and the robots standing;
+  /// where the ball is at the last of them.
+  Vec2 roll(Vec2 from, Vec2 velocity, double seconds) {
+    Vec2 ball = from;
+    for (int i = 0; i * 0.01 < seconds - 1e-9; ++i) {
+      ball = from + velocity * (i * 0.01);
+      frame(ball);
+    }
+    return ball;
+  }
+  void frame(const Vec2& ball) {
+    account_.on_frame(ball, robots_, kStart + time::duration_from_seconds(now_));
+    now_ += 0.01;
+  }
+  PlayAccount account_;
+  std::vector<Robot> robots_{{TeamColor::kBlue, 1, {0, 0}},     {TeamColor::kBlue, 2, {2, 1}},
+                             {TeamColor::kYellow, 1, {1, -1}},  {TeamColor::kYellow, 2, {3, 0}}};
+  double now_ = 0;
+};
+
+TEST_F(PlayAccountTest, APassToATeammateIsCompletedAndPossessionStaysWithTheTeam) {
+  roll({0.1, 0}, {0, 0}, 0.5);                                      // at blue 1's dribbler
+  const Vec2 at = roll({0.1, 0}, Vec2(1.8, 1.0).normalized() * 3, 0.69);  // kicked towards blue 2 at 3 m/s
+  roll(at, {0, 0}, 0.5);                                              // received
+  const TeamPlay& blue = account_.team(TeamColor::kBlue);
+  EXPECT_EQ(blue.passes_tried, 1u);
+  EXPECT_EQ(blue.passes_completed, 1u);
+  EXPECT_EQ(blue.shots, 0u);
+  EXPECT_NEAR(blue.possession, 1.69, 0.05);
+  EXPECT_EQ(account_.team(TeamColor::kYellow).possession, 0);
+}
+
+TEST_F(PlayAccountTest, AnInterceptedPassFailsAndPossessionChanges) {
+  roll({0.1, 0}, {0, 0}, 0.3);
+  const Vec2 at = roll({0.1, 0}, Vec2(0.9, -1.0).normalized() * 3, 0.42);  // straight at yellow 1
+  roll(at, {0, 0}, 0.5);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_tried, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_completed, 0u);
+  EXPECT_GT(account_.team(TeamColor::kYellow).possession, 0.4);
+}
+
+TEST_F(PlayAccountTest, AKickAtTheOpponentGoalIsAShotOnTargetAndOneBesideItIsNot) {
+  robots_ = {{TeamColor::kBlue, 1, {3, 0}}};
+  roll({3.1, 0}, {0, 0}, 0.2);
+  roll({3.1, 0}, {5, 0.3}, 0.3);  // crosses x = 4.5 at y = 0.084: on target
+  account_.on_referee(false, false);
+  account_.on_referee(true, false);
+  roll({3.1, 0}, {0, 0}, 0.2);
+  roll({3.1, 0}, Vec2(5, 2.5), 0.3);  // crosses at y = 0.7: beside the post, within the margin
+  const TeamPlay& blue = account_.team(TeamColor::kBlue);
+  EXPECT_EQ(blue.shots, 2u);
+  EXPECT_EQ(blue.shots_on_target, 1u);
+  EXPECT_EQ(blue.passes_tried, 0u);
+}
+
+TEST_F(PlayAccountTest, AfterTheSideSwapTheOtherGoalIsBluesTarget) {
+  account_.on_referee(true, true);  // blue now defends the positive half
+  robots_ = {{TeamColor::kBlue, 1, {3, 0}}};
+  roll({3.1, 0}, {0, 0}, 0.2);
+  roll({3.1, 0}, {5, 0}, 0.3);  // towards its own goal: not a shot
+  EXPECT_EQ(account_.team(TeamColor::kBlue).shots, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_tried, 1u);
+}
+
+TEST_F(PlayAccountTest, TheKickersIntentOverridesTheGeometry) {
+  robots_ = {{TeamColor::kBlue, 1, {3, 0}, PlayAccount::Intent::kClear}};
+  roll({3.1, 0}, {0, 0}, 0.2);
+  roll({3.1, 0}, {5, 0}, 0.3);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).shots, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_tried, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).kicks, 1u);
+}
+
+TEST_F(PlayAccountTest, AShootersKickAwayFromTheGoalIsNeitherAShotNorAPass) {
+  robots_ = {{TeamColor::kBlue, 1, {3, 0}, PlayAccount::Intent::kShot}};
+  roll({3.1, 0}, {0, 0}, 0.2);
+  roll({3.1, 0}, {0, 5}, 0.3);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).shots, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_tried, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).kicks, 1u);
+}
+
+TEST_F(PlayAccountTest, NothingCountsWhileTheBallIsNotInPlay) {
+  account_.on_referee(false, false);
+  roll({0.1, 0}, {0, 0}, 0.3);
+  const Vec2 at = roll({0.1, 0}, Vec2(1.8, 1.0).normalized() * 3, 0.69);
+  roll(at, {0, 0}, 0.5);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).kicks, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).possession, 0);
+}
+
+TEST_F(PlayAccountTest, APassOpenWhenPlayStopsFails) {
+  roll({0.1, 0}, {0, 0}, 0.3);
+  roll({0.1, 0}, {0, 3}, 0.5);  // towards the touch line, nobody there
+  account_.on_referee(false, false);
+  account_.on_referee(true, false);
+  roll({2.0 - 0.1, 1.0}, {0, 0}, 0.3);  // placed at blue 2 for the next play
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_tried, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_completed, 0u);
+}
+
+}  // namespace
+}  // namespace ssl::sslctl
