@@ -13,7 +13,7 @@
 // too fast in STOP, defense area, double touch, crash) counted apart. Budget (../shared/design.md): base
 // beats ball_chaser by >= 3 goals per match over 20 seeds, >= 70 % of passes completed, 0 avoidable fouls.
 //
-//   build/bench/match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...]
+//   build/bench/match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...] [--tactics]
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -88,7 +88,7 @@ ssl::sslctl::PlayAccount::Intent intent_of(const std::string& skill) {
   using Intent = ssl::sslctl::PlayAccount::Intent;
   if (skill == "pass") return Intent::kPass;
   if (skill == "shoot") return Intent::kShot;
-  if (skill == "clear_ball") return Intent::kClear;
+  if (skill == "clear_ball" || skill == "challenge") return Intent::kClear;  // away, to nobody in particular
   return Intent::kUnknown;
 }
 
@@ -117,6 +117,7 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
   ssl::sslctl::MatchReportBuilder report;
   report.set_field(field.field_length, field.goal_width);
   std::vector<ssl::sslctl::PlayAccount::Robot> robots;
+  std::map<std::string, std::map<std::string, double>> tactics;  // team -> tactic -> robot-frames in play
   match.start_match();
   const bool finished = match.run_until_final_whistle(
       std::chrono::hours(1), [&](const ssl::sim::DetectionFrame&, const ssl::sim::WorldSnapshot& truth) {
@@ -130,8 +131,17 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
           robots.push_back(seen);
         }
         report.on_frame(truth.ball.position.head<2>(), robots, truth.time);
+        const ssl::referee::Command command = match.builtin_referee()->state().command;
+        if (command == ssl::referee::Command::kNormalStart || command == ssl::referee::Command::kForceStart) {
+          for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
+            for (const ssl::planner::RoleInfo& role : match.output(team).roles) {
+              tactics[team == TeamColor::kBlue ? "blue" : "yellow"][role.role + "/" + role.tactic] += 1;
+            }
+          }
+        }
       });
   nlohmann::json out = nlohmann::json::parse(ssl::sslctl::to_json(report.report()));
+  out["tactics"] = tactics;
   out["a_is_blue"] = a_is_blue;
   out["seed"] = seed;
   out["finished"] = finished;
@@ -178,6 +188,7 @@ struct Totals {
   std::map<std::string, double> events;  // by type
   double fouls = 0, avoidable_fouls = 0;
   double wins = 0, draws = 0;
+  std::map<std::string, double> tactics;  // role/tactic -> robot-frames in normal play
 };
 
 void add(Totals& t, const nlohmann::json& match, const char* us, const char* them) {
@@ -197,6 +208,9 @@ void add(Totals& t, const nlohmann::json& match, const char* us, const char* the
     t.possession += mine["play"]["possession_s"].get<double>();
     t.possession_all += mine["play"]["possession_s"].get<double>() + theirs["play"]["possession_s"].get<double>();
   }
+  if (match.contains("tactics") && match["tactics"].contains(us)) {
+    for (const auto& [name, count] : match["tactics"][us].items()) t.tactics[name] += count.get<double>();
+  }
   for (const nlohmann::json& event : match["game_events"]) {
     if (event["team"].get<std::string>() != us) continue;
     const std::string type = event["type"].get<std::string>();
@@ -210,7 +224,7 @@ void add(Totals& t, const nlohmann::json& match, const char* us, const char* the
 
 double ratio(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0; }
 
-void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& matches) {
+void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& matches, bool print_tactics) {
   Totals a, b;
   for (const nlohmann::json& match : matches) {
     const bool a_blue = match["a_is_blue"].get<bool>();
@@ -248,6 +262,16 @@ void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& ma
     const char* mark = parsed && avoidable(*parsed) ? "!!" : parsed && ssl::referee::is_foul(*parsed) ? "* " : "  ";
     std::printf("  %s %-29s %14.2f %14.2f\n", mark, type.c_str(), a.events[type] / n, b.events[type] / n);
   }
+  if (print_tactics) {
+    std::printf("  roles/tactics in normal play (share of robot-frames)\n");
+    std::set<std::string> names;
+    double all_a = 0, all_b = 0;
+    for (const auto& [name, count] : a.tactics) names.insert(name), all_a += count;
+    for (const auto& [name, count] : b.tactics) names.insert(name), all_b += count;
+    for (const std::string& name : names) {
+      std::printf("     %-29s %13.1f%% %13.1f%%\n", name.c_str(), ratio(a.tactics[name], all_a), ratio(b.tactics[name], all_b));
+    }
+  }
   if (pairing.a == "base" && pairing.b == "ball_chaser") {
     const double margin = (a.goals_for - a.goals_against) / n;
     std::printf("  budget: base beats ball_chaser by >= 3 goals per match: %+.2f -> %s\n", margin,
@@ -275,6 +299,7 @@ int main(int argc, char** argv) {
   double half = 300;
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   std::vector<Pairing> pairings;
+  bool print_tactics = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const auto value = [&]() -> std::string {
@@ -292,14 +317,17 @@ int main(int argc, char** argv) {
     };
     if (arg == "--help") {
       std::printf(
-          "usage: match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...]\n"
+          "usage: match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...] [--tactics]\n"
           "  plays N seeded whole 6 v 6 matches (default 20; seeds S, S+1, ...) per pairing of strategies (base,\n"
           "  ball_chaser, wander; default base:ball_chaser and base:base) in lockstep under the strict_ai rules,\n"
           "  halves of --half s of playing time (default 300), J matches at a time (default: the cores), and\n"
-          "  prints goals, passes, shots, possession and game events per strategy and match, with the budgets\n");
+          "  prints goals, passes, shots, possession and game events per strategy and match, with the budgets;\n"
+          "  --tactics: also the share of each role/tactic in normal play\n");
       return 0;
     }
-    if (arg == "--seeds") {
+    if (arg == "--tactics") {
+      print_tactics = true;
+    } else if (arg == "--seeds") {
       seeds = static_cast<std::uint64_t>(number(1, 1000));
     } else if (arg == "--first-seed") {
       first_seed = static_cast<std::uint64_t>(number(0, 1e15));
@@ -362,7 +390,7 @@ int main(int argc, char** argv) {
   }
   for (std::thread& worker : workers) worker.join();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  for (std::size_t p = 0; p < pairings.size(); ++p) print_pairing(pairings[p], results[p]);
+  for (std::size_t p = 0; p < pairings.size(); ++p) print_pairing(pairings[p], results[p], print_tactics);
   std::printf("\n%zu matches in %.0f s of wall time\n", queue.size(), wall);
   return failed == 0 ? 0 : 1;
 }

@@ -1171,6 +1171,42 @@ bool run_until(LockstepMatch& m, double limit, const std::function<bool()>& done
   return false;
 }
 
+TEST_P(PlannerSimReferee, TwoAgainstNobodyPassWhenTheShotIsPoorAndScore) {
+  // The base strategy, our robots 1 and 2 alone: 1 at the ball near the touch line in their half, where the
+  // goal is a narrow slit; 2 in front of their goal. Normal play: 1 passes to 2 (the tree's dynamic pass),
+  // 2 takes the ball and scores within 12 s.
+  LockstepMatch m(param(), seed());
+  for (std::uint32_t id = 0; id < kRobots; ++id) {
+    if (id != 1 && id != 2) take_off(m, true, id);
+    take_off(m, false, id);
+  }
+  const double hl = m.half_length();
+  const Vec2 ball(hl - 3.5, m.field().field_width / 2 - 0.5);
+  m.place_ball(ball);
+  m.place(true, 1, ball + Vec2(-0.3, 0), 0.0);
+  m.place(true, 2, {hl - 2.0, -0.3}, M_PI / 2);
+  m.script({{kWarmUp, RefereeCommand::kForceStart}});
+  bool passed = false;
+  bool received = false;
+  bool scored = false;
+  while (m.time() < kWarmUp + 12.0 && !scored) {
+    m.tick();
+    for (const RoleInfo& role : m.output(true).roles) {
+      if (role.robot_id == 1 && role.tactic == "pass") passed = true;
+    }
+    const TrueRobot* receiver = true_robot(m, true, 2);
+    if (passed && receiver && receiver->touching) received = true;
+    const Vec2 at = m.truth().ball;
+    if (at.x() > hl) {
+      scored = std::abs(at.y()) < m.field().goal_width / 2;
+      if (!scored) break;
+    }
+  }
+  EXPECT_TRUE(passed) << "robot 1 never played the pass";
+  EXPECT_TRUE(received) << "robot 2 never touched the ball after the pass";
+  EXPECT_TRUE(scored) << "no goal within 12 s; the ball ended at " << m.truth().ball.transpose();
+}
+
 TEST_P(PlannerSimReferee, ManMarkStaysGoalSideWithinHalfAMetreOfAnOpponentRunningAt2MetresPerSecond) {
   // Their robot 3 runs a round of points in our half at up to 2 m/s (go_to_point, a new point every 2 s:
   // sprints towards our goal, across it and away, stops and turns); our robot 2 marks it. After 1 s to take

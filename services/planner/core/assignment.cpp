@@ -62,10 +62,21 @@ std::span<const int> StableAssigner::assign(std::uint32_t key, std::span<const s
                                             std::span<const wm::Vec2> slots) {
   const std::size_t n = std::min({ids.size(), robots.size(), kMaxSlots});
   const std::size_t m = std::min(slots.size(), kMaxSlots);
+  CostMatrix cost{};
+  for (std::size_t r = 0; r < n; ++r) {
+    for (std::size_t s = 0; s < m; ++s) cost[r][s] = (robots[r] - slots[s]).norm();
+  }
+  return assign_costs(key, ids.first(n), cost, m);
+}
+
+std::span<const int> StableAssigner::assign_costs(std::uint32_t key, std::span<const std::uint32_t> ids,
+                                                  const CostMatrix& given, std::size_t slots) {
+  const std::size_t n = std::min(ids.size(), kMaxSlots);
+  const std::size_t m = std::min(slots, kMaxSlots);
   const std::size_t cols = std::max(n, m);
   CostMatrix cost{};
   for (std::size_t r = 0; r < n; ++r) {
-    for (std::size_t s = 0; s < cols; ++s) cost[r][s] = s < m ? (robots[r] - slots[s]).norm() : 0.0;
+    for (std::size_t s = 0; s < cols; ++s) cost[r][s] = s < m ? given[r][s] : 0.0;
   }
   std::array<int, kMaxSlots> best = optimal_assignment(cost, n, cols);
   for (std::size_t r = 0; r < n; ++r) {

@@ -34,6 +34,10 @@ class StableAssigner {
   /// robots beyond the slot count get -1. Costs are distances.
   std::span<const int> assign(std::uint32_t key, std::span<const std::uint32_t> ids,
                               std::span<const wm::Vec2> robots, std::span<const wm::Vec2> slots);
+  /// The same over given costs: cost[r][s] of robot r (order of `ids`) in slot s < `slots` (any unit: the
+  /// hysteresis is in that unit, e.g. seconds to reach plus a role's misfit).
+  std::span<const int> assign_costs(std::uint32_t key, std::span<const std::uint32_t> ids, const CostMatrix& cost,
+                                    std::size_t slots);
 
   void reset() { valid_ = false; }
 

@@ -9,6 +9,7 @@
 #include "services/planner/core/plays.h"
 #include "services/planner/core/rules.h"
 #include "services/planner/core/skills.h"
+#include "services/planner/core/team_play.h"
 #include "services/planner/core/trajectory_motion.h"
 #include "libs/domain/game_state.h"
 #include "libs/domain/keep_out.h"
@@ -26,6 +27,7 @@ namespace bt = ssl::bt;
 struct TickInput {
   const Situation* situation = nullptr;
   PlayMemory* memory = nullptr;
+  TeamPlayMemory* team = nullptr;  // the base strategy's blackboard (style, roles, pass intent, formation)
 };
 
 inline constexpr bt::Key<TickInput> kInput{"tick_input"};
@@ -121,8 +123,8 @@ bt::NodePtr referee_override() {
 }
 // clang-format on
 
-/// One step of the base strategy: the tick input, the intents and the attacker in and out.
-using StrategyBody = bt::NodeStatus (*)(const Situation&, PlayMemory&, TeamIntents&, std::uint32_t& attacker);
+/// One step of the base strategy: the tick input, the team's memory, the intents and the attacker in and out.
+using StrategyBody = bt::NodeStatus (*)(const Situation&, TeamPlayMemory&, TeamIntents&, std::uint32_t& attacker);
 
 bt::NodePtr strategy_step(std::string name, StrategyBody body) {
   return bt::action(
@@ -131,9 +133,9 @@ bt::NodePtr strategy_step(std::string name, StrategyBody body) {
         const Result<TickInput> input = leaf.get(kInput);
         Result<TeamIntents> intents = leaf.get(kIntents);
         const Result<std::uint32_t> attacker = leaf.get(kAttacker);
-        if (!input || !input->situation || !intents || !attacker) return bt::NodeStatus::kFailure;
+        if (!input || !input->situation || !input->team || !intents || !attacker) return bt::NodeStatus::kFailure;
         std::uint32_t chosen = *attacker;
-        const bt::NodeStatus status = body(*input->situation, *input->memory, *intents, chosen);
+        const bt::NodeStatus status = body(*input->situation, *input->team, *intents, chosen);
         if (!leaf.set(kIntents, std::move(*intents)) || !leaf.set(kAttacker, chosen)) {
           return bt::NodeStatus::kFailure;
         }
@@ -143,57 +145,65 @@ bt::NodePtr strategy_step(std::string name, StrategyBody body) {
        bt::writes(kAttacker)});
 }
 
+/// A question about the team's memory.
+bt::NodePtr team_check(std::string name, bool (*question)(const Situation&, TeamPlayMemory&)) {
+  return bt::condition(std::move(name),
+                       [question](const bt::LeafContext& leaf) {
+                         const Result<TickInput> input = leaf.get(kInput);
+                         return input && input->situation && input->team && question(*input->situation, *input->team);
+                       },
+                       {bt::reads(kInput)});
+}
+
 bool has_attacker(const bt::LeafContext& leaf) {
   const Result<std::uint32_t> attacker = leaf.get(kAttacker);
   return attacker && *attacker != kNoRobot;
 }
 
-bool ready_to_kick(const bt::LeafContext& leaf) {
-  const Result<TickInput> input = leaf.get(kInput);
-  const Result<std::uint32_t> attacker = leaf.get(kAttacker);
-  return input && input->situation && attacker && *attacker != kNoRobot &&
-         attacker_ready_to_kick(*input->situation, *attacker);
-}
-
-bt::NodeStatus assign_roles(const Situation& s, PlayMemory& m, TeamIntents& out, std::uint32_t& attacker) {
-  attacker = strategy_goalkeeper_and_attacker(s, m, out).value_or(kNoRobot);
+bt::NodeStatus read_the_game(const Situation& s, TeamPlayMemory& m, TeamIntents&, std::uint32_t&) {
+  read_game(s, m);
   return bt::NodeStatus::kSuccess;
 }
-bt::NodeStatus kick_at_goal(const Situation& s, PlayMemory&, TeamIntents& out, std::uint32_t& attacker) {
-  strategy_kick(s, attacker, out);
+bt::NodeStatus assign_the_roles(const Situation& s, TeamPlayMemory& m, TeamIntents& out, std::uint32_t& attacker) {
+  attacker = assign_roles(s, m, out).value_or(kNoRobot);
   return bt::NodeStatus::kSuccess;
 }
-bt::NodeStatus drive_to_ball(const Situation& s, PlayMemory&, TeamIntents& out, std::uint32_t& attacker) {
-  strategy_approach(s, attacker, out);
+bt::NodeStatus kick_the_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out, std::uint32_t&) {
+  pass_ball(s, m, out);
   return bt::NodeStatus::kSuccess;
 }
-bt::NodeStatus support_and_defend(const Situation& s, PlayMemory& m, TeamIntents& out,
-                                  std::uint32_t& attacker) {
-  strategy_support(s, m, attacker == kNoRobot ? std::nullopt : std::optional(attacker), out);
+bt::NodeStatus take_the_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out, std::uint32_t&) {
+  receive_pass(s, m, out);
+  return bt::NodeStatus::kSuccess;
+}
+bt::NodeStatus play_the_ball(const Situation& s, TeamPlayMemory& m, TeamIntents& out, std::uint32_t& attacker) {
+  attack(s, m, attacker, out);
   return bt::NodeStatus::kSuccess;
 }
 
 // clang-format off
-/// The base strategy (seeds/001, simplified): the goalkeeper guards the goal line; the robot closest to the
-/// ball attacks (kicks at the goal when aligned behind the ball, else drives there); the others defend in
-/// front of our defense area and support ahead of the ball.
+/// The base strategy (seeds/001): the coach reads the game and picks the style; the style's roles are
+/// assigned (every field player gets its role's default: wingers and support open up, defenders block the
+/// shooting lanes, markers mark); then one main play: a pass being played (the passer's kick and the
+/// receiver's reception in parallel), or the attacker's shot, pass, clearance or challenge.
 bt::NodePtr base_strategy() {
   const bt::Ports attacker_port = {bt::reads(kAttacker)};
-  const bt::Ports kick_ports = {bt::reads(kInput), bt::reads(kAttacker)};
   return bt::sequence("BaseStrategy", {
-      strategy_step("AssignRoles", assign_roles),
-      bt::succeeder(bt::reactive_selector("Attacker", {
-          bt::reactive_sequence("Shoot", {
-              bt::condition("HasAttacker?", has_attacker, attacker_port),
-              bt::condition("ReadyToKick?", ready_to_kick, kick_ports),
-              strategy_step("KickAtGoal", kick_at_goal),
+      strategy_step("ReadTheGame", read_the_game),
+      strategy_step("AssignRoles", assign_the_roles),
+      bt::succeeder(bt::reactive_selector("MainPlay", {
+          bt::reactive_sequence("DynamicPass", {
+              team_check("PassInProgress?", pass_in_progress),
+              bt::parallel("PassAndReceive", bt::ParallelPolicy::kSuccessOnAll, {
+                  strategy_step("KickThePass", kick_the_pass),
+                  strategy_step("TakeThePass", take_the_pass),
+              }),
           }),
-          bt::reactive_sequence("Approach", {
+          bt::reactive_sequence("Attack", {
               bt::condition("HasAttacker?", has_attacker, attacker_port),
-              strategy_step("DriveToBall", drive_to_ball),
+              strategy_step("PlayTheBall", play_the_ball),
           }),
-      }), "AttackIfAny"),
-      strategy_step("SupportAndDefend", support_and_defend),
+      }), "PlayIfAny"),
   });
 }
 // clang-format on
@@ -234,6 +244,7 @@ struct Planner::Impl {
       : config(cfg),
         game(cfg.team),
         memory(cfg.role_hysteresis),
+        team_play(cfg.role_hysteresis),
         own_motion(motion_planner == nullptr),
         motion(motion_planner ? std::move(motion_planner) : make_motion_planner(cfg)),
         tree(bt::reactive_selector("Root", {referee_override(), strategy_tree(cfg.strategy)})) {
@@ -246,6 +257,7 @@ struct Planner::Impl {
   PlannerConfig config;
   wm::GameState game;
   PlayMemory memory;
+  TeamPlayMemory team_play;
   bool own_motion = true;  // made from the config (not given by a test): reconfigure() may remake it
   std::unique_ptr<MotionPlanner> motion;
   bt::Tree tree;
@@ -299,6 +311,9 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   s.placement_target = game.ball_placement_position();
   s.robots = robots;
   s.enemies = enemies;
+  s.possession = world.possession;
+  s.possessing_robot = world.possessing_robot;
+  s.now = now.to_seconds();
   s.keeper.reset();
   for (const wm::RobotState& robot : robots) {
     if (robot.id == game.our_goalkeeper()) s.keeper = robot.id;
@@ -323,7 +338,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
 
   // Inputs, a fresh intent table, tick.
   bt::Blackboard& board = tree.blackboard();
-  (void)board.set(kInput, TickInput{&situation, &memory});
+  (void)board.set(kInput, TickInput{&situation, &memory, &team_play});
   for (MotionIntent& intent : intents.robots) intent = MotionIntent{};
   intents.play = "none";
   (void)board.set(kIntents, intents);

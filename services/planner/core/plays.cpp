@@ -724,15 +724,26 @@ void write_keeper_clearing(const Situation& s, Ids& reserved, TeamIntents& out) 
   write(s, out, *s.keeper, intent);
 }
 
-std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s, PlayMemory& memory,
-                                                              TeamIntents& out) {
-  begin(s, out, "base_strategy");
+bool strategy_goalkeeper(const Situation& s, TeamIntents& out) {
   Ids reserved;
   if (keeper_should_clear(s)) {
     write_keeper_clearing(s, reserved, out);
-    return std::nullopt;  // no field player fights the keeper for the ball (or stands in its way)
+    return true;
   }
   write_keeper(s, base_intent(s, "defend"), false, reserved, out);
+  return false;
+}
+
+void write_intent(const Situation& s, TeamIntents& out, std::uint32_t id, const MotionIntent& intent) {
+  write(s, out, id, intent);
+}
+
+std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s, PlayMemory& memory,
+                                                              TeamIntents& out) {
+  begin(s, out, "base_strategy");
+  if (strategy_goalkeeper(s, out)) return std::nullopt;  // no field player fights the keeper for the ball
+  Ids reserved;
+  if (s.keeper) reserved.add(*s.keeper);
   if (!s.ball_known) return std::nullopt;
   std::optional<std::uint32_t> attacker = choose_closest(s, memory.kicker, s.ball);
   if (attacker && reserved.contains(*attacker)) attacker.reset();

@@ -40,6 +40,9 @@ struct Situation {
   std::span<const wm::RobotState> enemies;
   std::optional<std::uint32_t> keeper;  // the referee's goalkeeper id, when visible
   Zones zones;                          // the base zones of this tick
+  wm::Possession possession = wm::Possession::kNone;  // world_model's reading
+  std::optional<std::uint32_t> possessing_robot;      // of the possessing team
+  double now = 0;                                      // s, the tick's time (only differences matter)
 };
 
 /// What the team remembers between ticks for stable decisions.
@@ -87,6 +90,11 @@ void play_our_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& out
 void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& out);
 
 // ---- the base strategy, in steps (the strategy subtree calls them in order) ----------------------------
+/// The goalkeeper in normal play: clears a slow ball at our defense area (true: no field player may go for
+/// it), else guards the goal.
+bool strategy_goalkeeper(const Situation& s, TeamIntents& out);
+/// Writes robot `id`'s intent, its target moved out of the tick's zones.
+void write_intent(const Situation& s, TeamIntents& out, std::uint32_t id, const MotionIntent& intent);
 /// Picks the attacker (closest to the ball, stable) and writes the goalkeeper's intent.
 std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s, PlayMemory& memory,
                                                               TeamIntents& out);

@@ -87,12 +87,13 @@ MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const V
   return intent;
 }
 
-/// The angular intervals (from the ball, rad) that robots other than `shooter` hide.
-std::vector<std::pair<double, double>> shadows(const Situation& s, std::optional<std::uint32_t> shooter) {
+/// The angular intervals (seen from `from`, rad) that robots other than `shooter` hide.
+std::vector<std::pair<double, double>> shadows(const Situation& s, const Vec2& from,
+                                               std::optional<std::uint32_t> shooter) {
   std::vector<std::pair<double, double>> out;
   const double reach = radius(s) + s.field.size().ball_radius;
   const auto add = [&](const Vec2& position) {
-    const Vec2 d = position - s.ball;
+    const Vec2 d = position - from;
     const double distance = d.norm();
     if (distance <= reach || d.x() <= 0) return;
     const double centre = std::atan2(d.y(), d.x());
@@ -122,15 +123,16 @@ std::string_view skill_name(Skill skill) {
     case Skill::kManMark: return "man_mark";
     case Skill::kBlock: return "block";
     case Skill::kDefendGoal: return "defend_goal";
+    case Skill::kChallenge: return "challenge";
   }
   return "unknown";
 }
 
 Skill skill_of(const SkillCall& call) {
   // SkillCall lists its params in Skill's order.
-  static_assert(std::variant_size_v<SkillCall> == static_cast<std::size_t>(Skill::kDefendGoal) + 1);
-  static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(Skill::kDefendGoal), SkillCall>,
-                               DefendGoalParams>);
+  static_assert(std::variant_size_v<SkillCall> == static_cast<std::size_t>(Skill::kChallenge) + 1);
+  static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(Skill::kChallenge), SkillCall>,
+                               ChallengeParams>);
   return static_cast<Skill>(call.index());
 }
 
@@ -157,34 +159,38 @@ std::optional<double> shot_crossing(const Situation& s, double line_x) {
   return s.ball.y() + v.y() * (line_x - s.ball.x()) / v.x();
 }
 
-Vec2 shot_target(const Situation& s, std::optional<std::uint32_t> shooter) {
+GoalOpening goal_opening(const Situation& s, const Vec2& from, std::optional<std::uint32_t> shooter) {
   const Vec2 goal = s.field.their_goal_center();
-  if (s.ball.x() >= goal.x()) return goal;
-  // The mouth as the ball sees it, less a ball's width at each post.
+  if (from.x() >= goal.x()) return {0, goal};
+  // The mouth as seen from `from`, less a ball's width at each post.
   const double half = s.field.size().goal_width / 2 - s.field.size().ball_radius * 2;
-  const double low = std::atan2(goal.y() - half - s.ball.y(), goal.x() - s.ball.x());
-  const double high = std::atan2(goal.y() + half - s.ball.y(), goal.x() - s.ball.x());
-  std::vector<std::pair<double, double>> hidden = shadows(s, shooter);
+  const double low = std::atan2(goal.y() - half - from.y(), goal.x() - from.x());
+  const double high = std::atan2(goal.y() + half - from.y(), goal.x() - from.x());
+  std::vector<std::pair<double, double>> hidden = shadows(s, from, shooter);
   std::sort(hidden.begin(), hidden.end());
   double best_from = 0;
   double best_width = -1;
-  double from = low;
+  double start = low;
   const auto consider = [&](double to) {
-    if (to - from > best_width) {
-      best_width = to - from;
-      best_from = from;
+    if (to - start > best_width) {
+      best_width = to - start;
+      best_from = start;
     }
   };
-  for (const auto& [start, end] : hidden) {
-    if (end <= from) continue;
-    if (start >= high) break;
-    consider(std::min(start, high));
-    from = std::max(from, end);
+  for (const auto& [begin, end] : hidden) {
+    if (end <= start) continue;
+    if (begin >= high) break;
+    consider(std::min(begin, high));
+    start = std::max(start, end);
   }
-  if (from < high) consider(high);
-  if (best_width <= 0) return goal;
+  if (start < high) consider(high);
+  if (best_width <= 0) return {0, goal};
   const double aim = best_from + best_width / 2;
-  return {goal.x(), s.ball.y() + std::tan(aim) * (goal.x() - s.ball.x())};
+  return {best_width, {goal.x(), from.y() + std::tan(aim) * (goal.x() - from.x())}};
+}
+
+Vec2 shot_target(const Situation& s, std::optional<std::uint32_t> shooter) {
+  return goal_opening(s, s.ball, shooter).target;
 }
 
 MotionIntent pass(const Situation& s, const wm::RobotState& robot, const PassParams& p) {
@@ -385,6 +391,21 @@ MotionIntent defend_goal(const Situation& s, const wm::RobotState& /*robot*/, co
   return intent;
 }
 
+MotionIntent challenge(const Situation& s, const wm::RobotState& robot, const ChallengeParams& p) {
+  MotionIntent intent = base(s, Skill::kChallenge);
+  const Vec2 coming = geom::normalized_or(s.ball - robot.position, Vec2(1, 0));
+  const Vec2 to_goal = geom::normalized_or(s.field.their_goal_center() - s.ball, Vec2(1, 0));
+  // The way we come at it, turned towards their goal by at most max_turn.
+  const double turn = std::clamp(std::atan2(geom::cross(coming, to_goal), coming.dot(to_goal)), -p.max_turn, p.max_turn);
+  const Vec2 u = geom::Angle::from_radians(geom::angle_of(coming).radians() + turn).to_unit_vector();
+  intent.orientation = geom::angle_of(u).radians();
+  intent.target = s.ball + u * 0.1;  // through the ball: the armed kicker fires on contact
+  intent.kick = KickType::kFlat;
+  intent.kick_speed = std::min(p.speed, rules::kMaxBallSpeed - 0.3);
+  intent.dribble = false;
+  return intent;
+}
+
 MotionIntent run_skill(const Situation& s, const wm::RobotState& robot, const SkillCall& call) {
   return std::visit(
       [&](const auto& p) -> MotionIntent {
@@ -401,6 +422,7 @@ MotionIntent run_skill(const Situation& s, const wm::RobotState& robot, const Sk
         if constexpr (std::is_same_v<P, ManMarkParams>) return man_mark(s, robot, p);
         if constexpr (std::is_same_v<P, BlockParams>) return block(s, robot, p);
         if constexpr (std::is_same_v<P, DefendGoalParams>) return defend_goal(s, robot, p);
+        if constexpr (std::is_same_v<P, ChallengeParams>) return challenge(s, robot, p);
       },
       call);
 }

@@ -35,6 +35,7 @@ enum class Skill {
   kManMark,
   kBlock,
   kDefendGoal,
+  kChallenge,
 };
 std::string_view skill_name(Skill skill);
 
@@ -102,10 +103,16 @@ struct BlockParams {
 struct DefendGoalParams {
   bool touch_line = false;
 };
+/// Win a contested ball: no going round it; kick it on the first contact the way we come at it, turned
+/// towards their goal by at most `max_turn`, at `speed` (a poke past the opponent towards our wingers).
+struct ChallengeParams {
+  double max_turn = 0.5;   // rad (the ball must still meet the kicker at the front)
+  double speed = 3.0;      // m/s
+};
 
 using SkillCall = std::variant<PassParams, ReceiveParams, GoToBallParams, GoToPointParams, TurnWithBallParams,
                                ClearParams, ShootParams, StopParams, OpenSpaceParams, ManMarkParams, BlockParams,
-                               DefendGoalParams>;
+                               DefendGoalParams, ChallengeParams>;
 Skill skill_of(const SkillCall& call);
 /// A skill one robot runs instead of the tree's choice (Planner::override_skill).
 struct SkillOverride {
@@ -124,6 +131,7 @@ MotionIntent open_space(const Situation& s, const wm::RobotState& robot, const O
 MotionIntent man_mark(const Situation& s, const wm::RobotState& robot, const ManMarkParams& p);
 MotionIntent block(const Situation& s, const wm::RobotState& robot, const BlockParams& p);
 MotionIntent defend_goal(const Situation& s, const wm::RobotState& robot, const DefendGoalParams& p);
+MotionIntent challenge(const Situation& s, const wm::RobotState& robot, const ChallengeParams& p);
 /// The skill `call` names, with its params.
 MotionIntent run_skill(const Situation& s, const wm::RobotState& robot, const SkillCall& call);
 
@@ -134,6 +142,13 @@ double dribbler_distance(const Situation& s);
 /// rad, the heading that faces `to` from `from`.
 double heading_to(const Vec2& from, const Vec2& to);
 
+/// The widest part of their goal mouth that no robot (but `shooter`) hides, seen from `from`: its angle (rad,
+/// 0 when all of it is hidden) and its middle on the goal line (the goal centre when hidden).
+struct GoalOpening {
+  double width = 0;  // rad
+  Vec2 target = Vec2::Zero();
+};
+GoalOpening goal_opening(const Situation& s, const Vec2& from, std::optional<std::uint32_t> shooter = std::nullopt);
 /// Where a shot goes in: the middle of the widest part of their goal mouth that no robot (but `shooter`)
 /// hides from the ball; the goal centre when all of it is hidden.
 Vec2 shot_target(const Situation& s, std::optional<std::uint32_t> shooter = std::nullopt);

@@ -51,7 +51,7 @@ TEST(Skills, EverySkillNamesItselfAndRunSkillDispatchesByParams) {
   const std::vector<SkillCall> calls = {PassParams{},      ReceiveParams{},  GoToBallParams{},   GoToPointParams{},
                                         TurnWithBallParams{}, ClearParams{},  ShootParams{},      StopParams{},
                                         OpenSpaceParams{},  ManMarkParams{.opponent = 3}, BlockParams{.opponent = 3},
-                                        DefendGoalParams{}};
+                                        DefendGoalParams{}, ChallengeParams{}};
   for (const SkillCall& call : calls) {
     const MotionIntent intent = run_skill(scene.situation(), robot, call);
     EXPECT_TRUE(intent.active);

@@ -1,0 +1,440 @@
+#include "services/planner/core/team_play.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "libs/geometry/vec2.h"
+#include "services/planner/core/skills.h"
+#include "services/planner/core/trajectory.h"
+
+namespace ssl::planner {
+namespace {
+
+constexpr double kRollingDeceleration = 0.35;  // m/s^2 of a rolling ball on the carpet
+constexpr double kKickedSpeed = 1.0;           // m/s: a ball this fast away from the passer was kicked
+constexpr double kKickContact = 0.05;          // m beyond touching: the ball is at the passer's dribbler
+constexpr double kKickRecent = 0.15;           // s since the ball was at the dribbler: the passer kicked it
+constexpr double kKickAngle = 0.35;            // rad between the ball's run and the pass line
+constexpr double kTaken = 0.2;                 // m, receiver centre to ball: the pass arrived
+constexpr double kLostSpeed = 0.3;             // m/s: a pass this slow far from its receiver is dead
+constexpr double kLostDistance = 0.8;          // m
+constexpr double kAttackerLead = 0.2;          // s the attacker race looks ahead along the ball's motion
+constexpr double kDefenderMisfit = 0.5;        // s added for a defender slot to a robot ahead of the ball
+constexpr double kRoleKeyBase = 100;
+constexpr double kStrategyGap = 0.1;           // s without a strategy tick: play was stopped in between           // StableAssigner keys of the styles' formations
+
+double sign_or_one(double v) { return v < 0 ? -1.0 : 1.0; }
+
+double time_to_reach(const Situation& s, const wm::RobotState& robot, const Vec2& target) {
+  const TrajectoryLimits limits{.max_speed = s.config->limits.max_speed,
+                                .max_acceleration = s.config->limits.max_acceleration};
+  return Trajectory2D::plan(robot.position, robot.velocity, target, limits).duration();
+}
+
+/// Seconds a robot standing needs to cover `distance` at `acceleration` up to `speed`.
+double time_to_cover(double distance, double speed, double acceleration) {
+  const double ramp = speed * speed / (2 * acceleration);
+  if (distance <= ramp) return std::sqrt(2 * distance / acceleration);
+  return speed / acceleration + (distance - ramp) / speed;
+}
+
+/// Seconds a pass kicked to arrive at `arrival` m/s over `length` takes to roll `x` metres.
+double ball_time(double length, double x, double arrival) {
+  const double v0 = std::sqrt(arrival * arrival + 2 * kRollingDeceleration * length);
+  const double under = std::max(0.0, v0 * v0 - 2 * kRollingDeceleration * x);
+  return (v0 - std::sqrt(under)) / kRollingDeceleration;
+}
+
+Vec2 inside_field(const Situation& s, const Vec2& p, double margin) {
+  const double x = s.field.half_length() - margin;
+  const double y = s.field.width() / 2 - margin;
+  return {std::clamp(p.x(), -x, x), std::clamp(p.y(), -y, y)};
+}
+
+MotionIntent as_role(MotionIntent intent, Role role, std::string_view tactic) {
+  intent.role = to_string(role);
+  intent.tactic = tactic;
+  return intent;
+}
+
+/// A role instance of the formation: where it stands (or whom it marks).
+struct Slot {
+  Role role = Role::kMidfieldSupport;
+  Vec2 anchor = Vec2::Zero();
+  std::optional<std::uint32_t> opponent;
+};
+
+/// The two shooting lanes from the ball to each half of our goal, blocked just outside our defense area.
+std::array<Vec2, 2> lane_blocks(const Situation& s) {
+  const Vec2 goal = s.field.our_goal_center();
+  const double quarter = s.field.size().goal_width / 4;
+  const double margin = s.config->robot_radius + 0.1;
+  std::array<Vec2, 2> out{};
+  for (int k = 0; k < 2; ++k) {
+    const Vec2 aim = goal + Vec2(0, k == 0 ? quarter : -quarter);
+    const Vec2 towards = s.ball - aim;
+    const double length = std::max(towards.norm(), 1e-6);
+    Vec2 spot = aim + towards / length * std::min(length, s.field.size().penalty_area_depth + margin + 0.3);
+    for (double t = 0; t <= length; t += 0.05) {
+      spot = aim + towards / length * t;
+      if (!s.field.in_our_defense_area(spot, margin)) break;
+    }
+    out[static_cast<std::size_t>(k)] = spot;
+  }
+  // Shoulder to shoulder at least: two robots never stand in each other.
+  const Vec2 gap = out[0] - out[1];
+  const double need = 2 * s.config->robot_radius + 0.04;
+  if (gap.norm() < need) {
+    const Vec2 across = geom::normalized_or(geom::perpendicular(Vec2(s.ball - goal)), Vec2(0, 1));
+    const Vec2 middle = (out[0] + out[1]) / 2;
+    out[0] = middle + across * (need / 2);
+    out[1] = middle - across * (need / 2);
+  }
+  return out;
+}
+
+/// Opponents worth marking, most dangerous (nearest our goal) first: not in their own defense area (their
+/// keeper), not the one `pressed` by our attacker.
+std::vector<const wm::RobotState*> dangerous_opponents(const Situation& s, std::optional<std::uint32_t> pressed) {
+  std::vector<const wm::RobotState*> out;
+  for (const wm::RobotState& enemy : s.enemies) {
+    if (s.field.in_their_defense_area(enemy.position, 0.0)) continue;
+    if (pressed && enemy.id == *pressed) continue;
+    out.push_back(&enemy);
+  }
+  const Vec2 goal = s.field.our_goal_center();
+  std::sort(out.begin(), out.end(), [&](const wm::RobotState* a, const wm::RobotState* b) {
+    const double da = (a->position - goal).norm();
+    const double db = (b->position - goal).norm();
+    return da != db ? da < db : a->id < b->id;
+  });
+  return out;
+}
+
+/// The opponent nearest the ball (the carrier when they have it).
+std::optional<std::uint32_t> opponent_at_ball(const Situation& s) {
+  std::optional<std::uint32_t> best;
+  double best_distance = 0;
+  for (const wm::RobotState& enemy : s.enemies) {
+    const double d = (enemy.position - s.ball).norm();
+    if (!best || d < best_distance) {
+      best = enemy.id;
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+/// The style's roles (but the first) for `count` field players. While the keeper clears a ball at our defense
+/// area, nobody blocks the lanes: the defenders would stand between the keeper and the ball it kicks.
+std::vector<Slot> formation_slots(const Situation& s, Style style, std::size_t count, bool pressing,
+                                  bool keeper_clears) {
+  std::vector<Slot> slots;
+  const std::span<const Role> roles = roles_of(style);
+  const double depth = s.field.size().penalty_area_depth;
+  const double front_x = s.field.half_length() - depth - 0.4;
+  const double back_x = -s.field.half_length() + depth + 0.5;
+  const std::array<Vec2, 2> lanes = lane_blocks(s);
+  const std::vector<const wm::RobotState*> dangerous =
+      dangerous_opponents(s, pressing ? opponent_at_ball(s) : std::nullopt);
+  int wingers = 0, supports = 0, defenders = 0;
+  std::size_t marked = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    Role role = roles[std::min(i + 1, roles.size() - 1)];  // roles[0]: the attacker / presser, chosen apart
+    if (role == Role::kDefender && (defenders >= 2 || keeper_clears)) role = Role::kMarker;
+    if (role == Role::kMarker && marked >= dangerous.size()) role = Role::kMidfieldSupport;
+    Slot slot{.role = role};
+    switch (role) {
+      case Role::kWinger: {
+        const double side = (wingers++ % 2 == 0 ? -1.0 : 1.0) * sign_or_one(s.ball.y());
+        slot.anchor = {std::clamp(s.ball.x() + 1.5, back_x, front_x), side * 0.3 * s.field.width()};
+        break;
+      }
+      case Role::kMidfieldSupport: {
+        const double side = (supports++ % 2 == 0 ? 1.0 : -1.0) * -sign_or_one(s.ball.y());
+        slot.anchor = inside_field(s, {std::clamp(s.ball.x() - 0.8, back_x, front_x), s.ball.y() + side * 1.5}, 0.3);
+        break;
+      }
+      case Role::kDefender:
+        slot.anchor = lanes[static_cast<std::size_t>(defenders++)];
+        break;
+      case Role::kMarker:
+        slot.opponent = dangerous[marked]->id;
+        slot.anchor = dangerous[marked]->position;
+        ++marked;
+        break;
+      case Role::kGoalie:
+      case Role::kAttacker:
+      case Role::kReceiver:
+      case Role::kPresser:
+        slot.anchor = s.ball;
+        break;
+    }
+    slots.push_back(slot);
+  }
+  return slots;
+}
+
+MotionIntent role_default(const Situation& s, const wm::RobotState& robot, const Slot& slot) {
+  switch (slot.role) {
+    case Role::kWinger:
+      return as_role(open_space(s, robot, {.anchor = slot.anchor, .radius = 0.8}), slot.role, "support_attack");
+    case Role::kDefender:
+      return as_role(go_to_point(s, robot, {.point = slot.anchor}), slot.role, "block_lanes");
+    case Role::kMarker:
+      return as_role(man_mark(s, robot, {.opponent = *slot.opponent}), slot.role, "mark");
+    case Role::kMidfieldSupport:
+    case Role::kGoalie:
+    case Role::kAttacker:
+    case Role::kReceiver:
+    case Role::kPresser:
+      break;
+  }
+  return as_role(open_space(s, robot, {.anchor = slot.anchor, .radius = 0.8}), Role::kMidfieldSupport, "support");
+}
+
+}  // namespace
+
+double shot_quality(const Situation& s, const Vec2& from, std::optional<std::uint32_t> shooter) {
+  const double distance = (s.field.their_goal_center() - from).norm();
+  const double open = std::min(1.0, goal_opening(s, from, shooter).width / 0.25);
+  return open * std::clamp((7.0 - distance) / 5.0, 0.0, 1.0);
+}
+
+std::optional<PassOption> rate_pass(const Situation& s, std::uint32_t receiver, const Vec2& point,
+                                    const TeamPlayParams& params) {
+  const double reach = s.config->robot_radius + s.field.size().ball_radius;
+  PassOption option{.receiver = receiver, .point = point};
+  const Vec2 line = point - s.ball;
+  const double length = line.norm();
+  if (length < params.min_pass || length > params.max_pass) return std::nullopt;
+  const Vec2 u = line / length;
+  double margin = 1e9;
+  double open = M_PI;
+  for (const wm::RobotState& enemy : s.enemies) {
+    // Where it is once it reacts (it keeps going meanwhile), then from standing to the line's nearest point.
+    const Vec2 start = enemy.position + enemy.velocity * params.opponent_reaction;
+    const Vec2 to_enemy = start - s.ball;
+    const double along = std::clamp(to_enemy.dot(u), 0.0, length);
+    const Vec2 closest = s.ball + u * along;
+    const double enemy_time = time_to_cover(std::max(0.0, (start - closest).norm() - reach), params.opponent_speed,
+                                            params.opponent_acceleration) +
+                              params.opponent_reaction;
+    margin = std::min(margin, enemy_time - ball_time(length, along, params.arrival_speed));
+    if (to_enemy.dot(u) > 0 && to_enemy.norm() < length + 0.3) {
+      open = std::min(open, std::abs(std::atan2(geom::cross(u, to_enemy), u.dot(to_enemy))));
+    }
+  }
+  if (margin < params.min_margin || open < params.min_open_angle) return std::nullopt;
+  option.margin = margin;
+  option.open_angle = open;
+  option.progress = line.x();
+  option.receiver_shot = shot_quality(s, point, receiver);
+  option.score = option.receiver_shot + 0.6 * std::clamp(option.progress / 3.0, -1.0, 1.0) + 0.3 * std::min(margin, 1.0);
+  return option;
+}
+
+std::vector<PassOption> rate_passes(const Situation& s, std::uint32_t passer, const TeamPlayParams& params) {
+  std::vector<PassOption> options;
+  for (const wm::RobotState& mate : s.robots) {
+    if (mate.id == passer || (s.keeper && mate.id == *s.keeper)) continue;
+    if (auto option = rate_pass(s, mate.id, mate.position, params)) options.push_back(*option);
+  }
+  std::sort(options.begin(), options.end(), [](const PassOption& a, const PassOption& b) {
+    return a.score != b.score ? a.score > b.score : a.receiver < b.receiver;
+  });
+  return options;
+}
+
+void read_game(const Situation& s, TeamPlayMemory& m) {
+  // A pass does not outlive a stoppage: the strategy was not ticked in between.
+  if (m.last_tick && s.now - *m.last_tick > kStrategyGap) m.pass.reset();
+  m.last_tick = s.now;
+  m.reading = m.coach.read(s);
+  m.style = m.coach.decide(m.reading, s.now);
+}
+
+std::optional<std::uint32_t> assign_roles(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
+  out.play = "base_strategy";
+  for (MotionIntent& intent : out.robots) intent = MotionIntent{};
+  m.role_of.fill(std::nullopt);
+  m.marked.fill(std::nullopt);
+  const bool keeper_clears = strategy_goalkeeper(s, out);
+  if (s.keeper) m.role_of[*s.keeper] = Role::kGoalie;
+
+  std::array<std::uint32_t, kMaxSlots> free_ids{};
+  std::size_t free_count = 0;
+  std::optional<std::uint32_t> attacker;
+  std::optional<std::uint32_t> receiver;
+  if (m.pass) {
+    receiver = m.pass->receiver;
+    if (m.pass->phase == PassIntent::Phase::kSetUp) attacker = m.pass->passer;
+  } else if (!keeper_clears && s.ball_known) {
+    std::array<std::uint32_t, kMaxSlots> ids{};
+    std::array<double, kMaxSlots> scores{};
+    std::size_t n = 0;
+    const Vec2 ball_ahead = s.ball + s.ball_velocity * kAttackerLead;
+    for (const wm::RobotState& robot : s.robots) {
+      if (s.keeper && robot.id == *s.keeper) continue;
+      ids[n] = robot.id;
+      scores[n++] = time_to_reach(s, robot, ball_ahead);
+    }
+    attacker = m.attacker.choose({ids.data(), n}, {scores.data(), n});
+  }
+  for (const wm::RobotState& robot : s.robots) {
+    if ((s.keeper && robot.id == *s.keeper) || robot.id == attacker || robot.id == receiver) continue;
+    free_ids[free_count++] = robot.id;
+  }
+  if (attacker) m.role_of[*attacker] = mode_of(m.style) == TeamMode::kDefending ? Role::kPresser : Role::kAttacker;
+  if (receiver) m.role_of[*receiver] = Role::kReceiver;
+
+  const bool pressing = attacker && mode_of(m.style) == TeamMode::kDefending;
+  const std::vector<Slot> slots = formation_slots(s, m.style, free_count, pressing, keeper_clears);
+  CostMatrix cost{};
+  for (std::size_t r = 0; r < free_count; ++r) {
+    const wm::RobotState& robot = *find_robot(s, free_ids[r]);
+    for (std::size_t c = 0; c < slots.size(); ++c) {
+      double t = time_to_reach(s, robot, slots[c].anchor);
+      if (slots[c].role == Role::kDefender && robot.position.x() > s.ball.x()) t += kDefenderMisfit;
+      cost[r][c] = t;
+    }
+  }
+  const std::span<const int> slot_of = m.roles.assign_costs(
+      static_cast<std::uint32_t>(kRoleKeyBase) + static_cast<std::uint32_t>(m.style), {free_ids.data(), free_count},
+      cost, slots.size());
+  for (std::size_t r = 0; r < free_count; ++r) {
+    if (slot_of[r] < 0) continue;
+    const Slot& slot = slots[static_cast<std::size_t>(slot_of[r])];
+    const std::uint32_t id = free_ids[r];
+    m.role_of[id] = slot.role;
+    m.formation[id] = slot.anchor;
+    m.marked[id] = slot.opponent;
+    write_intent(s, out, id, role_default(s, *find_robot(s, id), slot));
+  }
+  return attacker;
+}
+
+bool pass_in_progress(const Situation& s, TeamPlayMemory& m) {
+  if (!m.pass) return false;
+  PassIntent& pass = *m.pass;
+  const TeamPlayParams params;
+  const wm::RobotState* passer = find_robot(s, pass.passer);
+  const wm::RobotState* receiver = find_robot(s, pass.receiver);
+  const auto end = [&] {
+    m.pass.reset();
+    return false;
+  };
+  if (!passer || !receiver || !s.ball_known) return end();
+  const double speed = s.ball_velocity.norm();
+  if (pass.phase == PassIntent::Phase::kSetUp) {
+    // Kicked by the passer: the ball was at its dribbler a moment ago and now runs along the pass (not a ball
+    // somebody else played that way).
+    const double at_dribbler = s.config->robot_radius + s.field.size().ball_radius + kKickContact;
+    if ((s.ball - passer->position).norm() < at_dribbler) pass.ball_at_passer = s.now;
+    const Vec2 along = geom::normalized_or(pass.point - passer->position, Vec2(1, 0));
+    const bool leaving = speed > kKickedSpeed && (s.ball - passer->position).norm() >= at_dribbler;
+    const bool from_passer = pass.ball_at_passer && s.now - *pass.ball_at_passer < kKickRecent;
+    const bool on_line = s.ball_velocity.dot(along) > speed * std::cos(kKickAngle);
+    if (leaving && from_passer && on_line) {
+      pass.phase = PassIntent::Phase::kInFlight;
+      pass.since = s.now;
+    } else if (s.now - pass.since > params.set_up_timeout || s.possession == wm::Possession::kEnemy) {
+      return end();
+    } else {
+      // Still a good pass? Opponents move while the passer lines up: re-rated every tick, it is called off
+      // (and the attacker decides again) once an opponent could reach its line first.
+      TeamPlayParams keep = params;  // hysteresis: a pass once chosen stays while it is still possible at all
+      keep.min_margin = params.keep_margin;
+      keep.min_open_angle = 0;
+      keep.min_pass = 0;  // the ball moves at the passer's feet: the pass's length is not the question now
+      keep.max_pass = params.max_pass + 1.0;
+      if (!rate_pass(s, pass.receiver, pass.point, keep)) return end();
+    }
+  }
+  if (pass.phase == PassIntent::Phase::kInFlight) {
+    const double to_receiver = (s.ball - receiver->position).norm();
+    if (to_receiver < kTaken + s.config->robot_radius) {
+      ++m.passes_received;
+      return end();
+    }
+    const bool dead = speed < kLostSpeed && to_receiver > kLostDistance;
+    const bool late = s.now - pass.since > params.flight_timeout;
+    const double touch = s.config->robot_radius + s.field.size().ball_radius + 0.01;
+    const bool intercepted = std::any_of(s.enemies.begin(), s.enemies.end(), [&](const wm::RobotState& enemy) {
+      return (enemy.position - s.ball).norm() < touch;
+    });
+    if (dead || late || intercepted) return end();
+  }
+  return true;
+}
+
+void pass_ball(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
+  if (!m.pass || m.pass->phase != PassIntent::Phase::kSetUp) return;
+  const wm::RobotState* passer = find_robot(s, m.pass->passer);
+  if (!passer) return;
+  const TeamPlayParams params;
+  write_intent(s, out, passer->id,
+               as_role(pass(s, *passer, {.receiver = m.pass->point, .arrival_speed = params.arrival_speed}),
+                       Role::kAttacker, "pass"));
+}
+
+void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
+  if (!m.pass) return;
+  const wm::RobotState* receiver = find_robot(s, m.pass->receiver);
+  if (!receiver) return;
+  write_intent(s, out, receiver->id,
+               as_role(receive(s, *receiver, {.point = m.pass->point}), Role::kReceiver, "pass"));
+}
+
+void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamIntents& out) {
+  const wm::RobotState* robot = find_robot(s, attacker);
+  if (!robot) return;
+  const TeamPlayParams params;
+  const bool opponent_at_it = std::any_of(s.enemies.begin(), s.enemies.end(), [&](const wm::RobotState& enemy) {
+    return (enemy.position - s.ball).norm() < params.contested_distance;
+  });
+  const bool coming_forward = (s.ball - robot->position).x() > 0;
+  if (mode_of(m.style) != TeamMode::kAttacking && opponent_at_it && coming_forward) {
+    write_intent(s, out, attacker, as_role(challenge(s, *robot, {}), m.role_of[attacker].value_or(Role::kPresser),
+                                           "challenge"));
+    return;
+  }
+  if (mode_of(m.style) == TeamMode::kDefending) {
+    write_intent(s, out, attacker, as_role(shoot(s, *robot, {}), Role::kPresser, "press"));
+    return;
+  }
+  const double quality = shot_quality(s, s.ball, attacker);
+  if (m.style == Style::kClearance && quality < params.shoot_quality) {
+    write_intent(s, out, attacker, as_role(clear_ball(s, *robot, {}), Role::kAttacker, "clear"));
+    return;
+  }
+  const bool at_ball = (robot->position - s.ball).norm() < 0.5;
+  if (at_ball && quality < params.shoot_quality && s.possession != wm::Possession::kEnemy) {
+    std::vector<PassOption> options = rate_passes(s, attacker, params);
+    // Turning round the ball takes the time opponents need to close the line: passes the way the attacker
+    // already comes at the ball are worth more.
+    const Vec2 coming = geom::normalized_or(s.ball - robot->position, Vec2(1, 0));
+    for (PassOption& option : options) {
+      const Vec2 u = geom::normalized_or(option.point - s.ball, coming);
+      option.score -= params.turn_cost * std::acos(std::clamp(u.dot(coming), -1.0, 1.0)) / M_PI;
+    }
+    std::sort(options.begin(), options.end(), [](const PassOption& a, const PassOption& b) {
+      return a.score != b.score ? a.score > b.score : a.receiver < b.receiver;
+    });
+    if (!options.empty() && options.front().score > quality + params.pass_advantage) {
+      m.pass = PassIntent{.passer = attacker,
+                          .receiver = options.front().receiver,
+                          .point = options.front().point,
+                          .phase = PassIntent::Phase::kSetUp,
+                          .since = s.now};
+      ++m.passes_started;
+      m.role_of[options.front().receiver] = Role::kReceiver;
+      pass_ball(s, m, out);
+      receive_pass(s, m, out);
+      return;
+    }
+  }
+  write_intent(s, out, attacker, as_role(shoot(s, *robot, {}), Role::kAttacker, "attack"));
+}
+
+}  // namespace ssl::planner

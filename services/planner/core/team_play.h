@@ -1,0 +1,106 @@
+// Team play of the base strategy (seeds/001), below the coach: the roles of the coach's style assigned to the
+// field players, the one main play (a dynamic pass, or the attacker's shot / clearance / challenge) and every
+// other robot's role default (wingers and support open up, defenders block shooting lanes, markers stay
+// goal-side of the most dangerous opponents, never two on one). Plain functions of the tick's Situation and
+// the team's TeamPlayMemory (the blackboard: style, roles, pass intent, formation positions), called by the
+// planner's tree (planner.cpp). All positions in the TEAM frame.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "services/planner/core/assignment.h"
+#include "services/planner/core/coach.h"
+#include "services/planner/core/plays.h"
+
+namespace ssl::planner {
+
+/// A pass the team is playing: the passer kicks to `point`, where the receiver takes it.
+struct PassIntent {
+  enum class Phase { kSetUp, kInFlight };
+  std::uint32_t passer = 0;
+  std::uint32_t receiver = 0;
+  Vec2 point = Vec2::Zero();
+  Phase phase = Phase::kSetUp;
+  double since = 0;  // s (Situation::now) the phase began
+  std::optional<double> ball_at_passer;  // s the ball last touched the passer's dribbler (set-up)
+};
+
+/// A teammate rated as the receiver of a pass from the ball.
+struct PassOption {
+  std::uint32_t receiver = 0;
+  Vec2 point = Vec2::Zero();
+  double score = 0;          // higher is better (see rate_passes)
+  double margin = 0;         // s the ball is ahead of the quickest opponent to its line
+  double open_angle = 0;     // rad between the pass line and the nearest opponent in front of the receiver
+  double progress = 0;       // m towards their goal
+  double receiver_shot = 0;  // shot_quality at the point
+};
+
+struct TeamPlayParams {
+  double arrival_speed = 1.5;        // m/s a pass arrives at the receiver with (what receive controls)
+  double min_pass = 0.8;             // m
+  double max_pass = 5.5;             // m
+  double min_margin = 0.2;           // s the ball must be ahead of every opponent along its line
+  double keep_margin = -0.1;         // s: a pass being set up is called off below this (hysteresis)
+  double min_open_angle = 0.17;      // rad (10 degrees)
+  double opponent_speed = 2.5;       // m/s an opponent reaches the line at, at most
+  double opponent_acceleration = 3.0;  // m/s^2 it gets there with, from standing
+  double opponent_reaction = 0.2;    // s before it turns towards the ball's line (it drifts meanwhile)
+  double shoot_quality = 0.45;       // a shot at least this good is taken rather than a pass
+  double pass_advantage = 0.1;       // a pass must score this much above the shot from the ball
+  double turn_cost = 0.6;            // score lost by a pass straight back from where the attacker comes
+  double set_up_timeout = 2.5;       // s for the passer to kick
+  double flight_timeout = 3.5;       // s for the ball to reach the receiver
+  double contested_distance = 0.4;   // m, opponent centre to ball: the ball is challenged, not shot
+};
+
+/// What the team's strategy remembers between ticks (the blackboard of seeds/001).
+struct TeamPlayMemory {
+  explicit TeamPlayMemory(double hysteresis = 0.3) : roles(hysteresis), attacker(hysteresis) {}
+
+  Coach coach;
+  GameReading reading;
+  Style style = Style::kContestBall;
+  std::optional<PassIntent> pass;
+  StableAssigner roles;
+  StableChoice attacker;
+  std::array<std::optional<Role>, wm::kMaxRobotsPerTeam> role_of{};    // each robot's role this tick
+  std::array<Vec2, wm::kMaxRobotsPerTeam> formation{};                // each robot's role position
+  std::array<std::optional<std::uint32_t>, wm::kMaxRobotsPerTeam> marked{};  // the opponent it marks
+  std::optional<double> last_tick;  // s (Situation::now) of the last strategy tick
+  std::uint32_t passes_started = 0;
+  std::uint32_t passes_received = 0;
+};
+
+/// How good a shot at their goal is from `from` (0..1): the widest open part of the mouth (1 at 0.25 rad or
+/// more) times the distance (1 up to 2 m, 0 from 7 m).
+double shot_quality(const Situation& s, const Vec2& from, std::optional<std::uint32_t> shooter = std::nullopt);
+
+/// Every teammate of `passer` (not the keeper) that a pass from the ball can reach, best first. Rejected:
+/// shorter than min_pass or longer than max_pass, an opponent that could reach the ball's line before the
+/// ball (min_margin), or stands within min_open_angle of it in front of the receiver. Score: the receiver's
+/// shot quality, progress towards their goal and the margin.
+std::vector<PassOption> rate_passes(const Situation& s, std::uint32_t passer, const TeamPlayParams& params = {});
+/// One pass from the ball to `point` for `receiver`, rated as rate_passes does; nullopt when rejected.
+std::optional<PassOption> rate_pass(const Situation& s, std::uint32_t receiver, const Vec2& point,
+                                    const TeamPlayParams& params = {});
+
+// ---- the base strategy's steps (planner.cpp's tree calls them in this order) ----------------------------
+/// The coach reads the game and decides the style.
+void read_game(const Situation& s, TeamPlayMemory& m);
+/// The keeper, the attacker (the field player quickest to the ball, stable; the pass's receiver when a pass
+/// flies) and every other field player's role of the style with its default intent. Returns the attacker.
+std::optional<std::uint32_t> assign_roles(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
+/// True while a pass is being played (updates its phase; ends it when taken, lost or late).
+bool pass_in_progress(const Situation& s, TeamPlayMemory& m);
+/// The passer's kick (set-up phase) and the receiver's reception: the seeds' Parallel "dynamic pass".
+void pass_ball(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
+void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
+/// The attacker in the coach's style: shoots when the shot is good, starts a pass when one is clearly
+/// better, clears in a clearance, challenges the carrier when they have the ball.
+void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamIntents& out);
+
+}  // namespace ssl::planner

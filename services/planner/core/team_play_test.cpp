@@ -1,0 +1,191 @@
+// The coach and the base strategy's team play as pure functions: the style each reading asks for and its
+// hysteresis, the pass ratings, and the roles handed out (one marker per opponent, defenders goal-side).
+// How they play in the simulator: tests/simulated (the 2 v 0 pass scenario, the whole match) and
+// bench/match_series.
+#include "services/planner/core/team_play.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+#include <vector>
+
+#include "services/planner/core/planner_test_util.h"
+
+namespace ssl::planner {
+namespace {
+
+using testing::robot_at;
+
+struct Scene {
+  PlannerConfig config;
+  std::vector<wm::RobotState> robots;
+  std::vector<wm::RobotState> enemies;
+  Situation s;
+
+  explicit Scene(const Vec2& ball) {
+    s.config = &config;
+    s.field = wm::Field(FieldGeometry::division_b());
+    s.ball_known = true;
+    s.ball = ball;
+  }
+  const Situation& situation() {
+    s.robots = robots;
+    s.enemies = enemies;
+    s.zones.field = s.field;
+    return s;
+  }
+};
+
+GameReading reading(wm::Possession possession, Third third, int advantage = 0, double momentum = 0) {
+  return {.possession = possession, .ball_third = third, .momentum = momentum, .advantage = advantage};
+}
+
+TEST(Coach, EachReadingAsksForItsStyle) {
+  using P = wm::Possession;
+  EXPECT_EQ(style_for(reading(P::kFriendly, Third::kMiddle)), Style::kBuildUpAttack);
+  EXPECT_EQ(style_for(reading(P::kFriendly, Third::kTheirs)), Style::kHighPressureAttack);
+  EXPECT_EQ(style_for(reading(P::kFriendly, Third::kMiddle, -1)), Style::kHoldPossession);
+  EXPECT_EQ(style_for(reading(P::kFriendly, Third::kOurs, -2)), Style::kClearance);
+  EXPECT_EQ(style_for(reading(P::kEnemy, Third::kOurs)), Style::kScrambleDefence);
+  EXPECT_EQ(style_for(reading(P::kEnemy, Third::kTheirs)), Style::kPressBall);
+  EXPECT_EQ(style_for(reading(P::kNone, Third::kMiddle)), Style::kContestBall);
+  EXPECT_EQ(style_for(reading(P::kContested, Third::kOurs, 0, -0.5)), Style::kScrambleDefence);
+  EXPECT_EQ(mode_of(Style::kHoldPossession), TeamMode::kAttacking);
+  EXPECT_EQ(mode_of(Style::kPressBall), TeamMode::kDefending);
+  EXPECT_EQ(mode_of(Style::kContestBall), TeamMode::kContesting);
+}
+
+TEST(Coach, ANewStyleWaitsForItsDelayExceptAScrambleDefence) {
+  Coach coach({.switch_delay = 0.3});
+  const GameReading attack = reading(wm::Possession::kFriendly, Third::kMiddle);
+  const GameReading press = reading(wm::Possession::kEnemy, Third::kMiddle);
+  EXPECT_EQ(coach.decide(attack, 0.0), Style::kBuildUpAttack);  // the first style at once
+  EXPECT_EQ(coach.decide(press, 0.1), Style::kBuildUpAttack);
+  EXPECT_EQ(coach.decide(press, 0.39), Style::kBuildUpAttack);   // 0.29 s asked for: not yet
+  EXPECT_EQ(coach.decide(press, 0.40), Style::kPressBall);       // 0.3 s: switched
+  // A flicker back and forth never switches.
+  for (int i = 0; i < 20; ++i) {
+    EXPECT_EQ(coach.decide(i % 2 == 0 ? attack : press, 0.5 + 0.1 * i), Style::kPressBall);
+  }
+  // Danger does not wait.
+  EXPECT_EQ(coach.decide(reading(wm::Possession::kEnemy, Third::kOurs), 3.0), Style::kScrambleDefence);
+}
+
+TEST(Coach, MomentumFollowsTheBallsDriftAndNumbersCountAroundTheBall) {
+  Coach coach({.momentum_time = 1.0, .momentum_speed = 2.0});
+  Scene scene({0, 0});
+  scene.robots = {robot_at({0.5, 0}, 0, 1), robot_at({1.0, 0.5}, 0, 2), robot_at({3.0, 0}, 0, 3)};
+  scene.enemies = {robot_at({-0.5, 0}, 0, 1)};
+  scene.s.ball_velocity = Vec2(-2.0, 0);  // towards our goal at the momentum speed
+  GameReading r;
+  for (int i = 0; i < 300; ++i) {
+    scene.s.now = i * 0.01;
+    r = coach.read(scene.situation());
+  }
+  EXPECT_LT(r.momentum, -0.9);
+  EXPECT_EQ(r.advantage, 1);  // two of ours, one of theirs within 1.5 m
+  EXPECT_EQ(r.ball_third, Third::kMiddle);
+}
+
+TEST(TeamPlay, APassIntoAnOpponentsPathIsRejectedAndAnOpenOneIsRated) {
+  Scene scene({0, 0});
+  scene.robots = {robot_at({-0.1, 0}, 0, 1), robot_at({2.5, 1.0}, 0, 2), robot_at({2.5, -1.0}, 0, 3)};
+  scene.enemies = {robot_at({1.25, 0.45}, 0, 7)};  // just beside the line to robot 2
+  const std::vector<PassOption> options = rate_passes(scene.situation(), 1);
+  ASSERT_EQ(options.size(), 1u);
+  EXPECT_EQ(options.front().receiver, 3u);
+  EXPECT_GT(options.front().margin, 0.15);
+  EXPECT_NEAR(options.front().progress, 2.5, 1e-9);
+}
+
+TEST(TeamPlay, TheReceiverNearTheirGoalIsPreferredAndPassesOutOfRangeAreNotRated) {
+  Scene scene({0, 0});
+  scene.robots = {robot_at({-0.1, 0}, 0, 1), robot_at({3.0, 0.3}, 0, 2), robot_at({-1.5, 1.0}, 0, 3),
+                  robot_at({0.4, 0.2}, 0, 4), robot_at({-4.2, 0}, 0, 5)};
+  const std::vector<PassOption> options = rate_passes(scene.situation(), 1, {.max_pass = 4.0});
+  ASSERT_EQ(options.size(), 2u);  // 4: too short; 5: too long
+  EXPECT_EQ(options[0].receiver, 2u);
+  EXPECT_EQ(options[1].receiver, 3u);
+  EXPECT_GT(options[0].receiver_shot, options[1].receiver_shot);
+}
+
+TEST(TeamPlay, EveryMarkerMarksADifferentOpponentAndDefendersBlockTheLanesGoalSide) {
+  Scene scene({-2.0, 0.5});
+  scene.s.possession = wm::Possession::kEnemy;
+  scene.s.keeper = 0;
+  scene.robots = {robot_at({-4.3, 0}, 0, 0),  robot_at({-1.0, 0}, 0, 1), robot_at({0.0, 1.0}, 0, 2),
+                  robot_at({0.0, -1.0}, 0, 3), robot_at({1.0, 0.0}, 0, 4), robot_at({2.0, 2.0}, 0, 5)};
+  scene.enemies = {robot_at({-2.1, 0.5}, 0, 1), robot_at({-2.5, -1.5}, 0, 2), robot_at({-1.0, 2.0}, 0, 3),
+                   robot_at({0.5, -2.0}, 0, 4), robot_at({4.3, 0}, 0, 5)};
+  TeamPlayMemory memory;
+  TeamIntents out;
+  read_game(scene.situation(), memory);
+  ASSERT_EQ(memory.style, Style::kScrambleDefence);
+  const std::optional<std::uint32_t> attacker = assign_roles(scene.situation(), memory, out);
+  ASSERT_TRUE(attacker);
+  EXPECT_EQ(memory.role_of[*attacker], Role::kPresser);
+  attack(scene.situation(), memory, *attacker, out);
+  EXPECT_EQ(memory.role_of[0], Role::kGoalie);
+  std::set<std::uint32_t> marked;
+  int defenders = 0;
+  for (std::uint32_t id = 1; id < 6; ++id) {
+    ASSERT_TRUE(memory.role_of[id]) << "robot " << id << " has no role";
+    if (memory.role_of[id] == Role::kMarker) {
+      ASSERT_TRUE(memory.marked[id]);
+      EXPECT_TRUE(marked.insert(*memory.marked[id]).second) << "two markers on opponent " << *memory.marked[id];
+      EXPECT_NE(*memory.marked[id], 5u) << "their keeper is not worth a marker";
+    }
+    if (memory.role_of[id] == Role::kDefender) {
+      ++defenders;
+      EXPECT_LT(memory.formation[id].x(), scene.s.ball.x()) << "a defender stands goal-side of the ball";
+      EXPECT_FALSE(scene.s.field.in_our_defense_area(memory.formation[id], 0.09)) << "robot " << id;
+    }
+    EXPECT_TRUE(out.robots[id].active) << "robot " << id;
+  }
+  EXPECT_EQ(defenders, 2);
+}
+
+TEST(TeamPlay, AnAttackerWithAPoorShotStartsAPassAndItsReceiverWaitsForIt) {
+  Scene scene({1.0, 2.5});
+  scene.s.possession = wm::Possession::kFriendly;
+  scene.robots = {robot_at({0.8, 2.5}, 0, 1), robot_at({3.0, 0.0}, 0, 2)};
+  TeamPlayMemory memory;
+  TeamIntents out;
+  read_game(scene.situation(), memory);
+  const std::optional<std::uint32_t> attacker = assign_roles(scene.situation(), memory, out);
+  ASSERT_EQ(attacker, 1u);
+  attack(scene.situation(), memory, *attacker, out);
+  ASSERT_TRUE(memory.pass);
+  EXPECT_EQ(memory.pass->receiver, 2u);
+  EXPECT_EQ(out.robots[1].tactic, "pass");
+  EXPECT_EQ(out.robots[2].role, to_string(Role::kReceiver));
+  EXPECT_TRUE(pass_in_progress(scene.situation(), memory));
+  // Set up for longer than its timeout without a kick: the pass is off.
+  scene.s.now = 3.0;
+  EXPECT_FALSE(pass_in_progress(scene.situation(), memory));
+  EXPECT_FALSE(memory.pass);
+}
+
+TEST(StableAssigner, GivenCostsAreAssignedOptimallyAndKeptUnlessClearlyCheaper) {
+  StableAssigner assigner(0.3);
+  CostMatrix cost{};
+  cost[0] = {1.0, 2.0};
+  cost[1] = {2.0, 1.5};
+  const std::array<std::uint32_t, 2> ids{4, 7};
+  auto first = assigner.assign_costs(1, ids, cost, 2);
+  EXPECT_EQ(first[0], 0);
+  EXPECT_EQ(first[1], 1);
+  cost[0] = {1.9, 2.0};  // swapping would save 0.2: within the hysteresis
+  cost[1] = {2.0, 2.1};
+  auto second = assigner.assign_costs(1, ids, cost, 2);
+  EXPECT_EQ(second[0], 0);
+  cost[0] = {3.0, 1.0};  // now clearly cheaper the other way round
+  cost[1] = {1.0, 3.0};
+  auto third = assigner.assign_costs(1, ids, cost, 2);
+  EXPECT_EQ(third[0], 1);
+  EXPECT_EQ(third[1], 0);
+}
+
+}  // namespace
+}  // namespace ssl::planner
