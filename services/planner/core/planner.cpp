@@ -20,6 +20,8 @@ namespace {
 
 /// Spacing (s) of the planned-path points in planner.debug.
 constexpr double kDebugPathStep = 0.1;
+/// m beyond touching (robot radius + ball radius) at which a robot counts as touching the ball.
+constexpr double kTouchMargin = 0.02;
 
 namespace bt = ssl::bt;
 
@@ -311,6 +313,17 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   s.placement_target = game.ball_placement_position();
   s.robots = robots;
   s.enemies = enemies;
+  // Our restart's kicker stays off the ball until another robot touched it, or play stopped (double touch).
+  if (memory.restart_kicker) {
+    const double touch = config.robot_radius + s.field.size().ball_radius + kTouchMargin;
+    const auto touches = [&](const wm::RobotState& robot) { return ball_known && (robot.position - ball).norm() < touch; };
+    const bool other_touched =
+        std::any_of(robots.begin(), robots.end(),
+                    [&](const wm::RobotState& r) { return r.id != *memory.restart_kicker && touches(r); }) ||
+        std::any_of(enemies.begin(), enemies.end(), touches);
+    if (other_touched || game.is_stopped() || game.is_halted() || game.is_ball_placement()) memory.restart_kicker.reset();
+  }
+  s.restart_kicker = memory.restart_kicker;
   s.possession = world.possession;
   s.possessing_robot = world.possessing_robot;
   s.now = now.to_seconds();

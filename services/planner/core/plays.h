@@ -43,6 +43,7 @@ struct Situation {
   wm::Possession possession = wm::Possession::kNone;  // world_model's reading
   std::optional<std::uint32_t> possessing_robot;      // of the possessing team
   double now = 0;                                      // s, the tick's time (only differences matter)
+  std::optional<std::uint32_t> restart_kicker;         // PlayMemory::restart_kicker: not to touch the ball
 };
 
 /// What the team remembers between ticks for stable decisions.
@@ -61,6 +62,9 @@ struct PlayMemory {
   PlacePhase place_phase = PlacePhase::kApproach;
   std::array<std::uint32_t, wm::kMaxRobotsPerTeam> wander_leg{};  // play_wander: each robot's waypoint
   std::optional<std::uint32_t> current_placer;
+  // Our restart's kicker once it may kick: it must not touch the ball again before another robot did (double
+  // touch). Cleared by the planner when another robot touches the ball or play stops.
+  std::optional<std::uint32_t> restart_kicker;
 };
 
 /// The intents of the whole team for one tick, indexed by robot id.

@@ -276,6 +276,7 @@ std::optional<std::uint32_t> assign_roles(const Situation& s, TeamPlayMemory& m,
     const Vec2 ball_ahead = s.ball + s.ball_velocity * kAttackerLead;
     for (const wm::RobotState& robot : s.robots) {
       if (s.keeper && robot.id == *s.keeper) continue;
+      if (s.restart_kicker && robot.id == *s.restart_kicker) continue;  // no double touch
       ids[n] = robot.id;
       scores[n++] = time_to_reach(s, robot, ball_ahead);
     }
