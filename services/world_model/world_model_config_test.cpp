@@ -23,7 +23,7 @@ TEST(WorldModelConfig, ImmModesNeedOneToFourJerkDensities) {
   ASSERT_TRUE(path) << path.error().message;
   auto deployed = load_world_model_config(*path, {});
   ASSERT_TRUE(deployed) << deployed.error().message;
-  EXPECT_EQ(deployed->core.robot.mode_jerk_stddev, (std::vector<double>{0.02, 1.0, 6.0}));
+  EXPECT_EQ(deployed->core.robot.mode_jerk_stddev, (std::vector<double>{0.02, 1.0, 12.0}));
   auto two = load_world_model_config(*path, {"filter.robot.mode_jerk_stddev=[0.05, 5]"});
   ASSERT_TRUE(two) << two.error().message;
   EXPECT_EQ(two->core.robot.mode_jerk_stddev.size(), 2u);

@@ -63,7 +63,7 @@ struct RobotFilterParams {
   double contact_angular_acceleration_stddev = 30;  // rad/s^2
   // m/s^3 per sqrt(Hz): white jerk densities of the uncommanded model, one IMM mode each (1 to
   // kMaxJerkModes, ascending; one value and no stationary mode: a single filter).
-  std::vector<double> mode_jerk_stddev = {0.02, 1.0, 6.0};
+  std::vector<double> mode_jerk_stddev = {0.02, 1.0, 12.0};
   bool stationary_mode = true;              // one more IMM mode: the robot stands (velocity zero) ...
   double stationary_drift_stddev = 0.0005;  // m per sqrt(s) ... its position drifts this much (pushed)
   double mode_switch_rate = 0.2;            // 1/s: expected switches between the modes
