@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "services/planner/testing/planned_match.h"
+#include "tests/support/validation.h"
 #include "tools/sslctl/match_report.h"
 
 namespace ssl {
@@ -81,8 +82,7 @@ struct MatchRecord {
   double duration = 0;  // s simulated
   // Side: blue on the positive half per half, and whether each world model's frame always agreed.
   std::optional<bool> blue_positive_first, blue_positive_second;
-  int frame_disagreements = 0;
-  int frame_checks = 0;
+  testing::Always frames{"each world model's team frame follows the referee's side"};  // once a second
   // Keepers: mean x (vision frame) per team and half.
   std::map<std::pair<TeamColor, bool>, std::pair<double, int>> keeper_x;  // (team, second half) -> sum, n
   // The second half's kickoff: how its NORMAL_START came.
@@ -156,8 +156,11 @@ const MatchRecord& played_match() {
               for (const TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
                 // We defend +x (the frame is turned) when our colour is on the positive half.
                 const bool defends_positive = (team == TeamColor::kBlue) == blue_positive;
-                ++out.frame_checks;
-                if (match.model(team).state(truth.time).flipped != defends_positive) ++out.frame_disagreements;
+                out.frames.require(match.model(team).state(truth.time).flipped == defends_positive, t, [&] {
+                  return std::string(to_string(team)) + "'s frame is " +
+                         (defends_positive ? "not turned" : "turned") + " while it defends the " +
+                         (defends_positive ? "positive" : "negative") + " half";
+                });
               }
             }
           }
@@ -203,8 +206,8 @@ TEST(WholeMatch, TheTeamsChangeSidesAtHalfTimeAndPlayTheirNewSides) {
   ASSERT_TRUE(match.blue_positive_first && match.blue_positive_second);
   EXPECT_EQ(*match.blue_positive_first, kBlueOnPositiveHalfAtStart);
   EXPECT_NE(*match.blue_positive_second, *match.blue_positive_first) << "the referee swapped the sides";
-  EXPECT_GT(match.frame_checks, 200);
-  EXPECT_EQ(match.frame_disagreements, 0) << "each world model's team frame follows the referee's side";
+  EXPECT_GT(match.frames.evaluated(), 200);
+  match.frames.report();
   for (const bool second : {false, true}) {
     const bool blue_positive = second ? *match.blue_positive_second : *match.blue_positive_first;
     for (const TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {

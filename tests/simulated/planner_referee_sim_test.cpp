@@ -6,11 +6,11 @@
 // frames into the world models -> validation functions. Simulated time only: no threads, no sleeps, no DDS;
 // the same seed gives the same match (PLANNER_SIM_SEED=n runs another seed).
 //
-// The VALIDATION FUNCTIONS (seeds/003) read the simulator's GROUND TRUTH (its snapshot after each tick),
-// never the world model: a planner that believes it obeys the rules but does not is caught. Two kinds:
-//   - Always: "for all time", a predicate that must hold at every tick of a phase;
-//   - Eventually: "must happen", a predicate that must become true (for a hold time) before a deadline.
-// A failing check reports how many ticks failed and the first failure (time, robot, value). Each scenario
+// The VALIDATION FUNCTIONS (seeds/003, tests/support/validation.h) read the simulator's GROUND TRUTH (its
+// snapshot after each tick), never the world model: a planner that believes it obeys the rules but does not
+// is caught. Always: a predicate that must hold at every tick of a phase; Eventually: one that must become
+// true (for a hold time) before a deadline. A failing check reports how many ticks failed and the first
+// failure (time, robot, value). Each scenario
 // prints one "[figures]" line (closest approach, top speed, placement error and time, ...).
 //
 // Distances are measured as the league's automatic referees do: robot CENTRE to ball centre against the rule
@@ -66,10 +66,13 @@
 #include "services/world_model/core/sim_harness.h"
 #include "libs/domain/team_frame.h"
 #include "services/world_model/core/world_model.h"
+#include "tests/support/validation.h"
 
 namespace ssl::planner {
 namespace {
 
+using ssl::testing::Always;
+using ssl::testing::Eventually;
 using testing::Restart;
 using testing::Side;
 using wm::RefereeCommand;
@@ -360,67 +363,6 @@ class LockstepMatch {
 };
 
 // ---- validation functions ---------------------------------------------------------------------------------
-
-/// A "for all time" check: `holds` must be true at every tick it is evaluated.
-class Always {
- public:
-  explicit Always(std::string name) : name_(std::move(name)) {}
-  void require(bool holds, double t, const std::function<std::string()>& detail) {
-    ++evaluated_;
-    if (holds) return;
-    if (failures_++ == 0) first_ = "t=" + fmt(t) + " s: " + detail();
-  }
-  void report() const {
-    EXPECT_GT(evaluated_, 0) << name_ << ": never evaluated (scenario too short?)";
-    EXPECT_EQ(failures_, 0) << name_ << " failed at " << failures_ << " of " << evaluated_ << " ticks; first "
-                            << first_;
-  }
-  static std::string fmt(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4f", v);
-    return buf;
-  }
-
- private:
-  std::string name_;
-  int evaluated_ = 0;
-  int failures_ = 0;
-  std::string first_;
-};
-
-/// A "must happen eventually" check: `happened` must become true (for `hold` seconds in a row) by `deadline`.
-class Eventually {
- public:
-  Eventually(std::string name, double deadline, double hold = 0)
-      : name_(std::move(name)), deadline_(deadline), hold_(hold) {}
-  /// Returns true once satisfied.
-  bool update(bool now_true, double t) {
-    if (done_) return true;
-    if (!now_true) {
-      since_.reset();
-      return false;
-    }
-    if (!since_) since_ = t;
-    if (t - *since_ >= hold_ - 1e-9 && *since_ <= deadline_) {
-      done_ = true;
-      at_ = *since_;
-    }
-    return done_;
-  }
-  bool done() const { return done_; }
-  double at() const { return at_; }
-  void report(const std::string& detail = {}) const {
-    EXPECT_TRUE(done_) << name_ << " did not happen within " << deadline_ << " s " << detail;
-  }
-
- private:
-  std::string name_;
-  double deadline_;
-  double hold_;
-  bool done_ = false;
-  double at_ = std::numeric_limits<double>::quiet_NaN();
-  std::optional<double> since_;
-};
 
 /// Robot-centre distance to a team's OPPONENT defense area (our frame: theirs at +x, ours at -x).
 double distance_to_opponent_defense_area(const sim::FieldGeometry& f, const TrueRobot& r) {

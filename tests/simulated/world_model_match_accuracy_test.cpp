@@ -20,6 +20,7 @@
 
 #include "services/planner/testing/planned_match.h"
 #include "services/world_model/core/world_model.h"
+#include "tests/support/validation.h"
 
 namespace ssl {
 namespace {
@@ -72,8 +73,9 @@ const wm::RobotState* find_state(const std::vector<wm::RobotState>& robots, std:
 }
 
 /// Adds one model's errors for one frame: detections of `team` against that model's view of them.
+/// `tracked`: every detected robot is in the simulator's truth and has a state in the model.
 void add_errors(const sim::DetectionFrame& frame, const sim::WorldSnapshot& truth, const wm::WorldModel& model,
-                TeamColor model_team, TeamErrors& errors) {
+                TeamColor model_team, TeamErrors& errors, testing::Always& tracked) {
   const wm::WorldState world = model.state_at_vision_time(frame.capture_time);
   for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
     const bool own = team == model_team;
@@ -82,8 +84,11 @@ void add_errors(const sim::DetectionFrame& frame, const sim::WorldSnapshot& trut
     for (const auto& d : detections) {
       const sim::RobotState* r = find_robot(truth, team, d.robot_id);
       const wm::RobotState* s = find_state(states, d.robot_id);
-      ASSERT_NE(r, nullptr);
-      ASSERT_NE(s, nullptr);
+      tracked.require(r != nullptr && s != nullptr, time::to_seconds(frame.capture_time.since_epoch()), [&] {
+        return std::string(to_string(team)) + " " + std::to_string(d.robot_id) + " detected but " +
+               (r ? "not in " + std::string(to_string(model_team)) + "'s model" : "not in the truth");
+      });
+      if (!r || !s) continue;
       // The world state is in the team frame: back to the vision frame once.
       const Vec2 filtered = model.team_frame().to_vision_point(s->position);
       const Vec2 detected(d.x, d.y);
@@ -127,6 +132,7 @@ TEST_P(WorldModelMatchAccuracy, BothTeamsOwnRobotsAndOpponentsAtLeastHalfOfRawIn
   const Division division = GetParam();
   const std::uint32_t robots = division.robots;
   TeamErrors blue_errors, yellow_errors;
+  testing::Always tracked("every detected robot has a state in both models");
   double ball_travel = std::numeric_limits<double>::infinity();  // the least of the matches
   for (std::uint64_t k = 0; k < kMatches; ++k) {
     planner::testing::PlannedMatch match({.field = division.field(), .robots = robots, .seed = seed() + k});
@@ -142,8 +148,8 @@ TEST_P(WorldModelMatchAccuracy, BothTeamsOwnRobotsAndOpponentsAtLeastHalfOfRawIn
     TeamErrors blue, yellow;
     match.run(30s, [&](const sim::DetectionFrame& frame, const sim::WorldSnapshot& truth) {
       if (time::to_seconds(frame.capture_time - match.start()) < 1.0) return;  // tracks lock on
-      add_errors(frame, truth, match.model(TeamColor::kBlue), TeamColor::kBlue, blue);
-      add_errors(frame, truth, match.model(TeamColor::kYellow), TeamColor::kYellow, yellow);
+      add_errors(frame, truth, match.model(TeamColor::kBlue), TeamColor::kBlue, blue, tracked);
+      add_errors(frame, truth, match.model(TeamColor::kYellow), TeamColor::kYellow, yellow, tracked);
     });
     merge(blue_errors, blue);
     merge(yellow_errors, yellow);
@@ -171,6 +177,7 @@ TEST_P(WorldModelMatchAccuracy, BothTeamsOwnRobotsAndOpponentsAtLeastHalfOfRawIn
     opponents_filtered.add(e->enemy_filtered);
   }
   std::printf("[WorldModel]   opponents in both models: %.0f%% lower\n", reduction(opponents_raw, opponents_filtered));
+  tracked.report();
   EXPECT_GT(ball_travel, 3.0) << "a match did not play the ball";
   // Own robots (commands known): measured 70-80 % lower (4 matches pooled, seeds 1-8 and the default, both
   // divisions). Opponents: 43-58 % per model, 44-56 % for both models together (the motion differs from
