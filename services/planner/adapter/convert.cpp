@@ -158,6 +158,7 @@ idl::planner::PlannerDebug to_idl(const PlannerOutput& in, TeamColor team, const
   out.tick(in.tick);
   out.stamp(stamp);
   out.play(in.play);
+  out.game_tactic(in.game_tactic);
   out.roles().reserve(in.roles.size());
   out.paths().reserve(in.roles.size());
   for (const RoleInfo& r : in.roles) {

@@ -211,6 +211,7 @@ TEST(PlannerConvert, ANonFiniteCommandBecomesAStopAndIsCounted) {
 TEST(PlannerConvert, DebugCarriesPlayRolesTreeAndTargets) {
   PlannerOutput out;
   out.play = "stop";
+  out.game_tactic = "defending/press_ball";
   out.tick = 12;
   out.roles = {{.robot_id = 0, .role = "goalkeeper", .tactic = "guard_goal", .skill = "move_to",
                 .target = Vec2(-5.8, 0.1)},
@@ -229,6 +230,7 @@ TEST(PlannerConvert, DebugCarriesPlayRolesTreeAndTargets) {
   EXPECT_EQ(debug.tick(), 12u);
   EXPECT_EQ(debug.stamp(), stamp);
   EXPECT_EQ(debug.play(), "stop");
+  EXPECT_EQ(debug.game_tactic(), "defending/press_ball");
   EXPECT_EQ(debug.tick_duration(), 0.0004);
   ASSERT_EQ(debug.roles().size(), 2u);
   EXPECT_EQ(debug.roles()[0].role(), "goalkeeper");

@@ -391,6 +391,10 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
     motion->describe(robot.id, kDebugPathStep, role.path, role.tracking_error);
   }
   out.play.assign(intents.play);
+  out.game_tactic.clear();
+  if (intents.play == std::string_view("base_strategy")) {
+    out.game_tactic.append(to_string(mode_of(team_play.style))).append("/").append(to_string(team_play.style));
+  }
   out.tick = ticks;
   tree.snapshot(rows);
   out.tree.resize(rows.size());

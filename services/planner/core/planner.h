@@ -78,6 +78,8 @@ struct TreeNodeInfo {
 struct PlannerOutput {
   std::vector<RobotCommand> commands;  // one per visible friendly robot, by id
   std::string play;                    // the active override branch or strategy play, e.g. "stop", "our_kickoff"
+  std::string game_tactic;             // the base strategy's coach: "<mode>/<style>" (e.g. "defending/press_ball");
+                                       // empty when the referee override or another strategy played
   std::vector<RoleInfo> roles;
   std::vector<TreeNodeInfo> tree;      // depth-first, as ticked
   std::uint64_t tick = 0;

@@ -144,6 +144,18 @@ TEST_P(PlannerRefereeTest, TheBallChaserSendsTheNearestToShootAndEveryOtherField
   EXPECT_EQ(planner.step(script_.inputs(), testing::at_tick(1)).play, "stop");
 }
 
+TEST_P(PlannerRefereeTest, TheBaseStrategyReportsTheCoachsModeAndStyleAndTheOverrideNone) {
+  script_.command(RefereeCommand::kForceStart);
+  const PlannerOutput play = tick();
+  EXPECT_EQ(play.play, "base_strategy");
+  const std::size_t slash = play.game_tactic.find('/');
+  ASSERT_NE(slash, std::string::npos) << play.game_tactic;
+  const std::string mode = play.game_tactic.substr(0, slash);
+  EXPECT_TRUE(mode == "attacking" || mode == "defending" || mode == "contesting") << play.game_tactic;
+  script_.command(RefereeCommand::kStop);
+  EXPECT_EQ(tick().game_tactic, "");
+}
+
 TEST_P(PlannerRefereeTest, AReconfiguredSpeedLimitHoldsFromTheNextTick) {
   script_.command(RefereeCommand::kForceStart);
   double fastest = 0;
