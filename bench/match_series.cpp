@@ -378,11 +378,11 @@ int main(int argc, char** argv) {
         }
         nlohmann::json match = nlohmann::json::parse(*line);
         const bool a_blue = match["a_is_blue"].get<bool>();
-        std::printf("  seed %3llu %s vs %s: %s %u : %u %s%s\n", static_cast<unsigned long long>(job.seed),
+        std::printf("  seed %3llu %s vs %s: %s %u : %u%s\n", static_cast<unsigned long long>(job.seed),
                     pairings[job.pairing].a.c_str(), pairings[job.pairing].b.c_str(), a_blue ? "(a blue)" : "(a yellow)",
                     match["teams"][a_blue ? "blue" : "yellow"]["score"].get<unsigned>(),
                     match["teams"][a_blue ? "yellow" : "blue"]["score"].get<unsigned>(),
-                    match["finished"].get<bool>() ? "" : " (no final whistle)", "");
+                    match["finished"].get<bool>() ? "" : " (no final whistle)");
         std::fflush(stdout);
         results[job.pairing].push_back(std::move(match));
       }

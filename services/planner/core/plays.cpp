@@ -745,28 +745,6 @@ void write_intent(const Situation& s, TeamIntents& out, std::uint32_t id, const 
   write(s, out, id, intent);
 }
 
-std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s, PlayMemory& memory,
-                                                              TeamIntents& out) {
-  begin(s, out, "base_strategy");
-  if (strategy_goalkeeper(s, out)) return std::nullopt;  // no field player fights the keeper for the ball
-  Ids reserved;
-  if (s.keeper) reserved.add(*s.keeper);
-  if (!s.ball_known) return std::nullopt;
-  std::optional<std::uint32_t> attacker = choose_closest(s, memory.kicker, s.ball);
-  if (attacker && reserved.contains(*attacker)) attacker.reset();
-  return attacker;
-}
-
-bool attacker_ready_to_kick(const Situation& s, std::uint32_t attacker) {
-  const wm::RobotState* robot = find_robot(s, attacker);
-  if (!robot || !s.ball_known) return false;
-  return behind_ball_facing(s, *robot, geom::normalized_or(shot_target(s, attacker) - s.ball, Vec2(1, 0)), 0.1);
-}
-
-void strategy_kick(const Situation& s, std::uint32_t attacker, TeamIntents& out) {
-  strategy_approach(s, attacker, out);  // the shoot skill kicks once behind the ball
-}
-
 void strategy_approach(const Situation& s, std::uint32_t attacker, TeamIntents& out) {
   const wm::RobotState* robot = find_robot(s, attacker);
   if (!robot) return;
@@ -799,16 +777,6 @@ void play_ball_chaser(const Situation& s, PlayMemory& memory, TeamIntents& out) 
     intent.role = "chaser";
     write(s, out, robot.id, intent);
   }
-}
-
-void strategy_support(const Situation& s, PlayMemory& memory, std::optional<std::uint32_t> attacker,
-                      TeamIntents& out) {
-  MotionIntent tmpl = base_intent(s, "support");
-  tmpl.avoid_ball_radius = 0.3;
-  Ids reserved;
-  if (s.keeper) reserved.add(*s.keeper);
-  if (attacker) reserved.add(*attacker);
-  fill(s, memory, kAttackKey, attack_set(s), tmpl, reserved, out);
 }
 
 }  // namespace ssl::planner

@@ -93,21 +93,14 @@ void play_their_penalty(const Situation& s, PlayMemory& memory, TeamIntents& out
 void play_our_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& out);
 void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& out);
 
-// ---- the base strategy, in steps (the strategy subtree calls them in order) ----------------------------
+// ---- shared by the strategies (team_play.h: the base strategy's steps) ----------------------------------
 /// The goalkeeper in normal play: clears a slow ball at our defense area (true: no field player may go for
 /// it), else guards the goal.
 bool strategy_goalkeeper(const Situation& s, TeamIntents& out);
 /// Writes robot `id`'s intent, its target moved out of the tick's zones.
 void write_intent(const Situation& s, TeamIntents& out, std::uint32_t id, const MotionIntent& intent);
-/// Picks the attacker (closest to the ball, stable) and writes the goalkeeper's intent.
-std::optional<std::uint32_t> strategy_goalkeeper_and_attacker(const Situation& s, PlayMemory& memory,
-                                                              TeamIntents& out);
-/// True when the attacker stands behind the ball, aligned with the aim, close enough to kick.
-bool attacker_ready_to_kick(const Situation& s, std::uint32_t attacker);
-void strategy_kick(const Situation& s, std::uint32_t attacker, TeamIntents& out);
+/// The attacker's shot: the shoot skill (it gets behind the ball, then kicks at the open part of the goal).
 void strategy_approach(const Situation& s, std::uint32_t attacker, TeamIntents& out);
-void strategy_support(const Situation& s, PlayMemory& memory, std::optional<std::uint32_t> attacker,
-                      TeamIntents& out);
 
 /// Robot state by id, nullptr if not visible.
 const wm::RobotState* find_robot(const Situation& s, std::uint32_t id);

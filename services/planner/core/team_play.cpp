@@ -20,8 +20,8 @@ constexpr double kLostSpeed = 0.3;             // m/s: a pass this slow far from
 constexpr double kLostDistance = 0.8;          // m
 constexpr double kAttackerLead = 0.2;          // s the attacker race looks ahead along the ball's motion
 constexpr double kDefenderMisfit = 0.5;        // s added for a defender slot to a robot ahead of the ball
-constexpr double kRoleKeyBase = 100;
-constexpr double kStrategyGap = 0.1;           // s without a strategy tick: play was stopped in between           // StableAssigner keys of the styles' formations
+constexpr std::uint32_t kRoleKeyBase = 100;    // StableAssigner keys of the styles' formations
+constexpr double kStrategyGap = 0.1;           // s without a strategy tick: play was stopped in between
 
 double sign_or_one(double v) { return v < 0 ? -1.0 : 1.0; }
 
@@ -74,7 +74,7 @@ std::array<Vec2, 2> lane_blocks(const Situation& s) {
     const Vec2 aim = goal + Vec2(0, k == 0 ? quarter : -quarter);
     const Vec2 towards = s.ball - aim;
     const double length = std::max(towards.norm(), 1e-6);
-    Vec2 spot = aim + towards / length * std::min(length, s.field.size().penalty_area_depth + margin + 0.3);
+    Vec2 spot = aim;
     for (double t = 0; t <= length; t += 0.05) {
       spot = aim + towards / length * t;
       if (!s.field.in_our_defense_area(spot, margin)) break;
@@ -301,7 +301,7 @@ std::optional<std::uint32_t> assign_roles(const Situation& s, TeamPlayMemory& m,
     }
   }
   const std::span<const int> slot_of = m.roles.assign_costs(
-      static_cast<std::uint32_t>(kRoleKeyBase) + static_cast<std::uint32_t>(m.style), {free_ids.data(), free_count},
+      kRoleKeyBase + static_cast<std::uint32_t>(m.style), {free_ids.data(), free_count},
       cost, slots.size());
   for (std::size_t r = 0; r < free_count; ++r) {
     if (slot_of[r] < 0) continue;
@@ -318,7 +318,7 @@ std::optional<std::uint32_t> assign_roles(const Situation& s, TeamPlayMemory& m,
 bool pass_in_progress(const Situation& s, TeamPlayMemory& m) {
   if (!m.pass) return false;
   PassIntent& pass = *m.pass;
-  const TeamPlayParams params;
+  const TeamPlayParams& params = m.params;
   const wm::RobotState* passer = find_robot(s, pass.passer);
   const wm::RobotState* receiver = find_robot(s, pass.receiver);
   const auto end = [&] {
@@ -355,8 +355,7 @@ bool pass_in_progress(const Situation& s, TeamPlayMemory& m) {
   if (pass.phase == PassIntent::Phase::kInFlight) {
     const double to_receiver = (s.ball - receiver->position).norm();
     if (to_receiver < kTaken + s.config->robot_radius) {
-      ++m.passes_received;
-      return end();
+      return end();  // taken: the receiver, now nearest the ball, is the next attacker
     }
     const bool dead = speed < kLostSpeed && to_receiver > kLostDistance;
     const bool late = s.now - pass.since > params.flight_timeout;
@@ -373,9 +372,8 @@ void pass_ball(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
   if (!m.pass || m.pass->phase != PassIntent::Phase::kSetUp) return;
   const wm::RobotState* passer = find_robot(s, m.pass->passer);
   if (!passer) return;
-  const TeamPlayParams params;
   write_intent(s, out, passer->id,
-               as_role(pass(s, *passer, {.receiver = m.pass->point, .arrival_speed = params.arrival_speed}),
+               as_role(pass(s, *passer, {.receiver = m.pass->point, .arrival_speed = m.params.arrival_speed}),
                        Role::kAttacker, "pass"));
 }
 
@@ -390,7 +388,7 @@ void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
 void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamIntents& out) {
   const wm::RobotState* robot = find_robot(s, attacker);
   if (!robot) return;
-  const TeamPlayParams params;
+  const TeamPlayParams& params = m.params;
   const bool opponent_at_it = std::any_of(s.enemies.begin(), s.enemies.end(), [&](const wm::RobotState& enemy) {
     return (enemy.position - s.ball).norm() < params.contested_distance;
   });
@@ -428,7 +426,6 @@ void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamI
                           .point = options.front().point,
                           .phase = PassIntent::Phase::kSetUp,
                           .since = s.now};
-      ++m.passes_started;
       m.role_of[options.front().receiver] = Role::kReceiver;
       pass_ball(s, m, out);
       receive_pass(s, m, out);

@@ -61,6 +61,7 @@ struct TeamPlayParams {
 struct TeamPlayMemory {
   explicit TeamPlayMemory(double hysteresis = 0.3) : roles(hysteresis), attacker(hysteresis) {}
 
+  TeamPlayParams params;
   Coach coach;
   GameReading reading;
   Style style = Style::kContestBall;
@@ -71,8 +72,6 @@ struct TeamPlayMemory {
   std::array<Vec2, wm::kMaxRobotsPerTeam> formation{};                // each robot's role position
   std::array<std::optional<std::uint32_t>, wm::kMaxRobotsPerTeam> marked{};  // the opponent it marks
   std::optional<double> last_tick;  // s (Situation::now) of the last strategy tick
-  std::uint32_t passes_started = 0;
-  std::uint32_t passes_received = 0;
 };
 
 /// How good a shot at their goal is from `from` (0..1): the widest open part of the mouth (1 at 0.25 rad or
