@@ -10,7 +10,7 @@
 // console's CPU as a share of one core (/proc/<pid>/stat), the frames per second and bytes per frame each
 // viewer received, and the page's redraws per second.
 //
-//   build/bench/console_load [--seconds 20] [--domain 205] [--port 45290]
+//   build/bench/console_load [--seconds 20] [--domain 205] [--port 25290]
 #include <httplib.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -47,7 +47,7 @@ constexpr int kRobots = 11;          // per team
 struct Options {
   double seconds = 20;
   int domain = 205;
-  int port = 45290;
+  int port = 25290;
 };
 
 fs::path exe_dir() { return fs::canonical("/proc/self/exe").parent_path(); }
@@ -222,7 +222,7 @@ struct Viewer {
 int main(int argc, char** argv) {
   Options options;
   if (argc > 1 && std::string(argv[1]) == "--help") {
-    std::printf("console_load [--seconds 20] [--domain 205] [--port 45290]: the console's CPU and frame rates\n");
+    std::printf("console_load [--seconds 20] [--domain 205] [--port 25290]: the console's CPU and frame rates\n");
     return 0;
   }
   for (int i = 1; i + 1 < argc; i += 2) {

@@ -3,7 +3,7 @@
 // --interface; --set key=value for any key). Durations are in seconds in the file.
 //
 //   auto config = ssl::referee::load_referee_gateway_config("deploy/config/referee_gateway.yaml",
-//                                                            {"network.referee_port=44001"});
+//                                                            {"network.referee_port=24001"});
 //   if (!config) fail(config.error().message);
 //   RefereeIngest ingest(gateway_options(*config));
 #pragma once

@@ -35,10 +35,10 @@ TEST(RefereeGatewayConfig, TheDeployedFileLoadsWithTheLeagueDefaults) {
 
 TEST(RefereeGatewayConfig, FlagsOverrideKeys) {
   auto config = load_referee_gateway_config(
-      deployed_file(), {"network.referee_port=44123", "source=builtin", "network.interface=10.0.0.5",
+      deployed_file(), {"network.referee_port=24123", "source=builtin", "network.interface=10.0.0.5",
                         "source_identifier=6f1c2a4e-1b2d-4c3e-9f00-0123456789ab", "heartbeat_period=0.25"});
   ASSERT_TRUE(config) << config.error().message;
-  EXPECT_EQ(config->network.referee_port, 44123);
+  EXPECT_EQ(config->network.referee_port, 24123);
   EXPECT_EQ(config->source, SourceKind::kBuiltin);
   EXPECT_EQ(config->network.interface_address, "10.0.0.5");
   const GatewayOptions options = gateway_options(*config);

@@ -1,7 +1,7 @@
 // referee_gateway as a process, as it runs at a match: Referee packets multicast on loopback (like the
 // Game Controller, about every 25 ms) in; referee.state, referee.event and system.health read back over
 // DDS and through `sslctl topic echo`; and the built-in referee. Each test has its own DDS domain (181-187)
-// and referee port (44181-44187). Nothing sleeps to wait for discovery: readers wait for matched writers or data, bounded.
+// and referee port (24181-24187). Nothing sleeps to wait for discovery: readers wait for matched writers or data, bounded.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -131,7 +131,7 @@ void stop(ChildProcess& gateway) {
 
 TEST(RefereeGatewayProcess, StateAndEachGameEventOnceFlowFromMulticastToDds) {
   constexpr int kDomain = 181;
-  constexpr int kPort = 44181;
+  constexpr int kPort = 24181;
   auto gateway = start_gateway(kPort, kDomain);
   Observer observer(kDomain);
   ASSERT_TRUE(observer.wait_for_gateway()) << gateway.drain_stderr();
@@ -199,7 +199,7 @@ TEST(RefereeGatewayProcess, StateAndEachGameEventOnceFlowFromMulticastToDds) {
 
 TEST(RefereeGatewayProcess, LateJoiningReadersGetTheLastState) {
   constexpr int kDomain = 182;
-  constexpr int kPort = 44182;
+  constexpr int kPort = 24182;
   auto gateway = start_gateway(kPort, kDomain);
   Observer observer(kDomain, /*referee_readers=*/false);  // sslctl is forked below (see Observer)
   auto sender = open_sender(kPort);
@@ -238,7 +238,7 @@ TEST(RefereeGatewayProcess, LateJoiningReadersGetTheLastState) {
 
 TEST(RefereeGatewayProcess, GarbageIsCountedAndTheGatewayKeepsWorking) {
   constexpr int kDomain = 183;
-  constexpr int kPort = 44183;
+  constexpr int kPort = 24183;
   auto gateway = start_gateway(kPort, kDomain);
   Observer observer(kDomain);
   ASSERT_TRUE(observer.wait_for_gateway()) << gateway.drain_stderr();
@@ -272,7 +272,7 @@ TEST(RefereeGatewayProcess, GarbageIsCountedAndTheGatewayKeepsWorking) {
 
 TEST(RefereeGatewayProcess, AStrayGameControllerIsCountedAndIgnored) {
   constexpr int kDomain = 184;
-  constexpr int kPort = 44184;
+  constexpr int kPort = 24184;
   auto gateway = start_gateway(kPort, kDomain);
   Observer observer(kDomain);
   ASSERT_TRUE(observer.wait_for_gateway()) << gateway.drain_stderr();
@@ -303,7 +303,7 @@ TEST(RefereeGatewayProcess, AStrayGameControllerIsCountedAndIgnored) {
 
 TEST(RefereeGatewayProcess, AStaleRefereeTurnsHealthToWarnWithItsAge) {
   constexpr int kDomain = 185;
-  constexpr int kPort = 44185;
+  constexpr int kPort = 24185;
   auto gateway = start_gateway(kPort, kDomain, {"--set", "stale_after=0.3"});
   Observer observer(kDomain);
   ASSERT_TRUE(observer.wait_for_gateway()) << gateway.drain_stderr();
@@ -335,7 +335,7 @@ TEST(RefereeGatewayProcess, AStaleRefereeTurnsHealthToWarnWithItsAge) {
 // defends negative x) scores for blue; arcade restarts with FORCE_START after its 2 s STOP by itself.
 TEST(RefereeGatewayProcess, TheBuiltinRefereeScoresAGoalSeenInVisionAndSendsLeaguePackets) {
   constexpr int kDomain = 187;
-  constexpr int kPort = 44187;
+  constexpr int kPort = 24187;
   auto gateway = start_gateway(kPort, kDomain, {"--source", "builtin", "--profile", "arcade"});
   auto packets = net::MulticastReceiver::open("224.5.23.1", kPort, "127.0.0.1");
   ASSERT_TRUE(packets) << packets.error().message;

@@ -5,7 +5,7 @@
 // e-stop stops every robot, stays latched when its writer dies, and only an explicit release restores
 // commands; referee HALT stops robots; against our real simulator, robot.feedback is published; a radio
 // base station stand-in answers command frames with a status frame whose values reach robot.feedback.
-// Each test has its own DDS domain (121-125) and UDP ports (47211-47230).
+// Each test has its own DDS domain (121-125) and UDP ports (27211-27230).
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -176,8 +176,8 @@ std::uint64_t counter(const nlohmann::json& health, const std::string& name) {
 }
 
 TEST(RobotLinkProcessTest, WatchdogStopsTheRobotWithin100MsWhenThePlannerIsKilled) {
-  SimStandIn sim(47211);
-  auto robot_link = start_robot_link(121, 47211);
+  SimStandIn sim(27211);
+  auto robot_link = start_robot_link(121, 27211);
   auto planner = start_planner(121, 1000);
 
   ASSERT_TRUE(sim.wait_for(driving, kTimeout))
@@ -206,8 +206,8 @@ TEST(RobotLinkProcessTest, WatchdogStopsTheRobotWithin100MsWhenThePlannerIsKille
 }
 
 TEST(RobotLinkProcessTest, EstopStopsEveryRobotStaysLatchedWhenItsWriterDiesAndReleaseRestoresCommands) {
-  SimStandIn sim(47212);
-  auto robot_link = start_robot_link(122, 47212);
+  SimStandIn sim(27212);
+  auto robot_link = start_robot_link(122, 27212);
   auto planner = start_planner(122, 3000);
   ASSERT_TRUE(sim.wait_for(driving, kTimeout))
       << "last datagram: " << sim.last() << "\nrobot_link: " << output_of(robot_link)
@@ -249,8 +249,8 @@ TEST(RobotLinkProcessTest, EstopStopsEveryRobotStaysLatchedWhenItsWriterDiesAndR
 }
 
 TEST(RobotLinkProcessTest, RefereeHaltStopsEveryRobotWhateverThePlannerSays) {
-  SimStandIn sim(47213);
-  auto robot_link = start_robot_link(123, 47213);
+  SimStandIn sim(27213);
+  auto robot_link = start_robot_link(123, 27213);
   auto planner = start_planner(123, 3000);
   ASSERT_TRUE(sim.wait_for(driving, kTimeout))
       << "last datagram: " << sim.last() << "\nrobot_link: " << output_of(robot_link)
@@ -275,10 +275,10 @@ TEST(RobotLinkProcessTest, RefereeHaltStopsEveryRobotWhateverThePlannerSays) {
 TEST(RobotLinkProcessTest, DrivesOurSimulatorAndPublishesItsFeedback) {
   auto simulator =
       start("simulator", {"--no-dds", "--mode",      "realtime",  "--realism",     "none",  "--robots",
-                          "2",        "--interface", "127.0.0.1", "--vision-port", "47220", "--control-port",
-                          "47221",    "--blue-port", "47222",     "--yellow-port", "47223", "--grsim-port",
-                          "47224",    "--log-level", "warn"});
-  auto robot_link = start_robot_link(124, 47222);
+                          "2",        "--interface", "127.0.0.1", "--vision-port", "27220", "--control-port",
+                          "27221",    "--blue-port", "27222",     "--yellow-port", "27223", "--grsim-port",
+                          "27224",    "--log-level", "warn"});
+  auto robot_link = start_robot_link(124, 27222);
   auto feedback = start("sslctl", {"topic", "echo", "robot.feedback", "--team", "blue", "--domain", "124",
                                    "--count", "1", "--timeout", "30"});
   auto planner = start_planner(124, 1500);
@@ -304,10 +304,10 @@ TEST(RobotLinkProcessTest, DrivesOurSimulatorAndPublishesItsFeedback) {
 
 TEST(RobotLinkProcessTest, RadioStatusFramesReachRobotFeedbackWithLinkQuality) {
   // The base station stand-in: receives robot_link's command frames and answers each with a status frame.
-  net::UdpSocket base_station = SimStandIn::open(47230);
+  net::UdpSocket base_station = SimStandIn::open(27230);
   auto robot_link = start("robot_link", {"--team", "blue", "--domain", "125", "--backend", "radio",
                                          "--set", "radio.transport=udp", "radio.host=127.0.0.1",
-                                         "radio.port=47230", "--interface", "127.0.0.1", "--log-level",
+                                         "radio.port=27230", "--interface", "127.0.0.1", "--log-level",
                                          "info"});
   auto feedback = start("sslctl", {"topic", "echo", "robot.feedback", "--team", "blue", "--domain", "125",
                                    "--count", "1", "--timeout", "30"});

@@ -186,7 +186,7 @@ struct LatencyOptions {
   bool enabled = true;
   int samples = 2000;
   int domain = 179;
-  int port = 43990;
+  int port = 23990;
 };
 
 /// Takes our flags out of argv (Google Benchmark rejects unknown ones).

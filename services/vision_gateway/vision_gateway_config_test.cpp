@@ -61,11 +61,11 @@ TEST(VisionGatewayConfig, TheSitesChangeOnlyThePortAndTheInterface) {
 TEST(VisionGatewayConfig, FlagsOverrideKeysAndAFixedSourceBecomesAnAddress) {
   auto config = load_vision_gateway_config(
       deployed("vision_gateway.yaml"),
-      {"network.vision_port=43123", "network.interface=10.1.2.3", "source=192.168.1.50",
+      {"network.vision_port=23123", "network.interface=10.1.2.3", "source=192.168.1.50",
        "geometry.defaults_division=b", "tracker.enabled=true"});
   ASSERT_TRUE(config) << config.error().message;
   const ServiceOptions options = service_options(*config);
-  EXPECT_EQ(options.vision_port, 43123);
+  EXPECT_EQ(options.vision_port, 23123);
   EXPECT_EQ(options.interface_address, "10.1.2.3");
   EXPECT_EQ(options.gateway.source_address, *net::parse_ipv4("192.168.1.50"));
   EXPECT_EQ(options.gateway.defaults_division, DivisionChoice::kB);

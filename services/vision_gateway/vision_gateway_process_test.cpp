@@ -164,7 +164,7 @@ std::int64_t now_unix_ns() {
 }
 
 TEST(VisionGatewayProcess, PublishesSimulatorVisionPerCameraInMetresWithGeometry) {
-  const Ports ports(43100);
+  const Ports ports(23100);
   const int domain = 160;
   auto simulator = start_simulator(ports);
   auto gateway = start_gateway(ports.vision, domain);
@@ -266,7 +266,7 @@ TEST(VisionGatewayProcess, PublishesSimulatorVisionPerCameraInMetresWithGeometry
 }
 
 TEST(VisionGatewayProcess, GarbageAndForeignSendersAreCountedWhilePublishingGoesOn) {
-  const Ports ports(43200);
+  const Ports ports(23200);
   const int domain = 161;
   auto simulator = start_simulator(ports);
   auto gateway = start_gateway(ports.vision, domain);
@@ -335,7 +335,7 @@ TEST(VisionGatewayProcess, GarbageAndForeignSendersAreCountedWhilePublishingGoes
 
 TEST(VisionGatewayProcess, SilentGroupIsReportedAsWarn) {
   const int domain = 162;
-  auto gateway = start_gateway(43300, domain);
+  auto gateway = start_gateway(23300, domain);
   HealthWatch health_watch(domain);
   const auto health = health_watch.wait([](const auto&) { return true; });
   ASSERT_TRUE(health);
@@ -346,7 +346,7 @@ TEST(VisionGatewayProcess, SilentGroupIsReportedAsWarn) {
 }
 
 TEST(VisionGatewayProcess, FixedSourceIgnoresEveryOtherHost) {
-  const Ports ports(43400);
+  const Ports ports(23400);
   const int domain = 163;
   auto simulator = start_simulator(ports);  // sends from 127.0.0.1
   auto gateway = start_gateway(ports.vision, domain, {"--set", "source=127.0.0.2"});
@@ -360,7 +360,7 @@ TEST(VisionGatewayProcess, FixedSourceIgnoresEveryOtherHost) {
 }
 
 TEST(VisionGatewayProcess, RestartedSimulatorIsFollowedAfterTheSourceTimeout) {
-  const Ports ports(43600);
+  const Ports ports(23600);
   const int domain = 165;
   auto gateway = start_gateway(ports.vision, domain);
   HealthWatch health_watch(domain);
@@ -384,8 +384,8 @@ TEST(VisionGatewayProcess, RestartedSimulatorIsFollowedAfterTheSourceTimeout) {
 
 TEST(VisionGatewayProcess, TrackedVisionIsDecodedAndCountedWhenEnabled) {
   const int domain = 164;
-  const int vision_port = 43500;
-  const int tracker_port = 43501;
+  const int vision_port = 23500;
+  const int tracker_port = 23501;
   auto gateway = start_gateway(
       vision_port, domain,
       {"--set", "tracker.enabled=true", "--set", "tracker.port=" + std::to_string(tracker_port)});
@@ -446,12 +446,12 @@ TEST(VisionGatewayProcess, BadFlagsAndConfigsExitNonZeroWithAClearMessage) {
   }
 
   auto printed =
-      start("vision_gateway", {"--print-config", "--vision-port", "43999", "--set", "source=10.0.0.8",
+      start("vision_gateway", {"--print-config", "--vision-port", "23999", "--set", "source=10.0.0.8",
                                "--interface", "10.0.0.7", "--set", "tracker.enabled=true"});
   out.clear();
   while (auto line = printed.read_line(seconds(5))) out += *line + "\n";
   EXPECT_EQ(printed.wait(kTimeout), 0);
-  EXPECT_NE(out.find("vision_port: 43999"), std::string::npos) << out;
+  EXPECT_NE(out.find("vision_port: 23999"), std::string::npos) << out;
   EXPECT_NE(out.find("interface: \"10.0.0.7\""), std::string::npos) << out;
   EXPECT_NE(out.find("source: \"10.0.0.8\""), std::string::npos) << out;
   EXPECT_NE(out.find("enabled: true"), std::string::npos) << out;

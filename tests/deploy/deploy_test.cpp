@@ -267,14 +267,14 @@ TEST_P(ServiceManagerTest, AServiceSaysReadyOnceItHearsItsInputsThenFeedsTheWatc
 INSTANTIATE_TEST_SUITE_P(
     EveryService, ServiceManagerTest,
     ::testing::Values(
-        NotifyCase{"simulator", {"--domain", "160", "--robots", "2", "--vision-port", "42160", "--control-port",
-                                 "42161", "--blue-port", "42162", "--yellow-port", "42163", "--grsim-port", "42164"}},
-        NotifyCase{"vision_gateway", {"--domain", "160", "--vision-port", "42165"}},
-        NotifyCase{"referee_gateway", {"--domain", "160", "--referee-port", "42166"}},
+        NotifyCase{"simulator", {"--domain", "160", "--robots", "2", "--vision-port", "22160", "--control-port",
+                                 "22161", "--blue-port", "22162", "--yellow-port", "22163", "--grsim-port", "22164"}},
+        NotifyCase{"vision_gateway", {"--domain", "160", "--vision-port", "22165"}},
+        NotifyCase{"referee_gateway", {"--domain", "160", "--referee-port", "22166"}},
         NotifyCase{"world_model", {"--domain", "166", "--team", "blue"}, "vision.detection", 166},
         NotifyCase{"planner", {"--domain", "167", "--team", "blue"}, "world.state", 167},
-        NotifyCase{"robot_link", {"--domain", "168", "--team", "blue", "--sim-port", "42167"}, "robot.commands", 168},
-        NotifyCase{"console", {"--domain", "160", "--http-port", "42172"}}),
+        NotifyCase{"robot_link", {"--domain", "168", "--team", "blue", "--sim-port", "22167"}, "robot.commands", 168},
+        NotifyCase{"console", {"--domain", "160", "--http-port", "22172"}}),
     [](const ::testing::TestParamInfo<NotifyCase>& param) { return param.param.program; });
 
 TEST(ServiceManager, AServiceWhoseInputsNeverAppearIsUpAfterItsGraceAndSaysSo) {
@@ -310,7 +310,7 @@ TEST(ServiceManager, WithoutANotifySocketTheServicesRunAsBefore) {
   // Every other process test of the project starts services without NOTIFY_SOCKET; this one says so and
   // checks a service starts and stops cleanly with it unset.
   ::unsetenv("NOTIFY_SOCKET");
-  auto child = ChildProcess::start(bin_dir() / "vision_gateway", {"--domain", "160", "--vision-port", "42168"});
+  auto child = ChildProcess::start(bin_dir() / "vision_gateway", {"--domain", "160", "--vision-port", "22168"});
   ASSERT_TRUE(child) << child.error().message;
   const auto reports = health_reports({}, 160, 3);
   child->signal(SIGTERM);
@@ -330,7 +330,7 @@ TEST(ServiceManager, AnOperatorsSslctlReachesServicesRunningAsTheUnitsUser) {
     argv.insert(argv.end(), args.begin(), args.end());
     return ChildProcess::start("/usr/bin/setpriv", argv);
   };
-  auto service = as_user(4242, bin_dir() / "vision_gateway", {"--domain", "165", "--vision-port", "42171"});
+  auto service = as_user(4242, bin_dir() / "vision_gateway", {"--domain", "165", "--vision-port", "22171"});
   ASSERT_TRUE(service) << service.error().message;
   auto health = as_user(4243, bin_dir() / "sslctl", {"health", "--json", "--listen", "4", "--domain", "165"});
   ASSERT_TRUE(health) << health.error().message;
@@ -605,9 +605,9 @@ TEST(Sites, RobotLinkDrivesTheSimulatorInSimAndTheRadioOnTheField) {
 TEST(Discovery, ClientsOfADiscoveryServerFindEachOtherThroughItAndOnlyThroughIt) {
   if (shell("command -v fastdds").status != 0) GTEST_SKIP() << "fastdds (fastdds-tools) is not installed";
   TempDir dir;
-  const std::string port = "42169";
+  const std::string port = "22169";
   write_text(dir.path / "served/dds.yaml", "discovery: server\nservers: [127.0.0.1:" + port + "]\n");
-  write_text(dir.path / "unserved/dds.yaml", "discovery: server\nservers: [127.0.0.1:42170]\n");
+  write_text(dir.path / "unserved/dds.yaml", "discovery: server\nservers: [127.0.0.1:22170]\n");
   auto server = ChildProcess::start("/usr/bin/fastdds", {"discovery", "-i", "0", "-l", "127.0.0.1", "-p", port});
   ASSERT_TRUE(server) << server.error().message;
 

@@ -110,7 +110,7 @@ TEST(DdsTwoProcessTest, LateJoinerReceivesTheLastRefereeState) {
 
 TEST(DdsTwoProcessTest, SigtermLeavesNoSharedMemorySegmentsBehind) {
   // A service (sslctl talks UDP only: see dds::ParticipantOptions::shared_memory).
-  auto started = ChildProcess::start(bin_dir() / "vision_gateway", {"--domain", "153", "--vision-port", "42153"});
+  auto started = ChildProcess::start(bin_dir() / "vision_gateway", {"--domain", "153", "--vision-port", "22153"});
   ASSERT_TRUE(started) << started.error().message;
   ChildProcess& service = *started;
   std::optional<std::string> line;

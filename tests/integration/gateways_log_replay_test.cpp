@@ -21,8 +21,8 @@ namespace {
 using std::chrono::seconds;
 using Clock = std::chrono::steady_clock;
 constexpr int kDomain = 157;
-constexpr int kVisionPort = 46910;
-constexpr int kRefereePort = 46911;
+constexpr int kVisionPort = 26910;
+constexpr int kRefereePort = 26911;
 constexpr std::int64_t kStartNs = 1'700'000'000'000'000'000;
 
 std::string vision_frame(std::uint32_t camera, std::uint32_t frame_number, double t_capture) {

@@ -21,7 +21,8 @@ using std::chrono::milliseconds;
 using std::chrono::seconds;
 using Clock = std::chrono::steady_clock;
 
-/// Ports of one simulator instance; each test uses its own block so tests can run in parallel.
+/// Ports of one simulator instance; each test uses its own block so tests can run in parallel. Test ports stay
+/// below Linux's ephemeral range (32768-60999), where a socket bound to port 0 anywhere could hold them.
 struct Ports {
   int vision, control, blue, yellow, grsim;
   explicit Ports(int base) : vision(base), control(base + 1), blue(base + 2), yellow(base + 3), grsim(base + 4) {}
@@ -36,6 +37,13 @@ ChildProcess start_simulator(const Ports& ports, const std::string& mode) {
        std::to_string(ports.grsim), "--log-level", "warn"});
   EXPECT_TRUE(child) << child.error().message;
   return std::move(child).value();
+}
+
+/// What the simulator printed so far (its log goes to stdout, errors to stderr), for failure messages.
+std::string printed(ChildProcess& simulator) {
+  std::string text = simulator.drain_stderr();
+  while (auto line = simulator.read_line(milliseconds(0))) text += *line + "\n";
+  return text;
 }
 
 net::Endpoint local(int port) { return *net::Endpoint::from_parts("127.0.0.1", port); }
@@ -80,7 +88,7 @@ bool has_robot(const google::protobuf::RepeatedPtrField<SSL_DetectionRobot>& rob
 }
 
 TEST(SimulatorProtocolTest, TeleportThroughTheControlPortIsSeenInVision) {
-  const Ports ports(42100);
+  const Ports ports(22100);
   auto vision = net::MulticastReceiver::open("224.5.23.2", ports.vision, "127.0.0.1");
   ASSERT_TRUE(vision) << vision.error().message;
   auto simulator = start_simulator(ports, "realtime");
@@ -112,7 +120,7 @@ TEST(SimulatorProtocolTest, TeleportThroughTheControlPortIsSeenInVision) {
 }
 
 TEST(SimulatorProtocolTest, GarbageAndBadCommandsAreAnsweredWithErrorsAndTheSimulatorKeepsRunning) {
-  const Ports ports(42200);
+  const Ports ports(22200);
   auto simulator = start_simulator(ports, "realtime");
   auto client = net::UdpSocket::open("127.0.0.1", 0);
   ASSERT_TRUE(client);
@@ -161,7 +169,7 @@ TEST(SimulatorProtocolTest, GarbageAndBadCommandsAreAnsweredWithErrorsAndTheSimu
 }
 
 TEST(SimulatorProtocolTest, GrsimReplacementMovesARobot) {
-  const Ports ports(42300);
+  const Ports ports(22300);
   auto vision = net::MulticastReceiver::open("224.5.23.2", ports.vision, "127.0.0.1");
   ASSERT_TRUE(vision);
   auto simulator = start_simulator(ports, "realtime");
@@ -190,7 +198,7 @@ TEST(SimulatorProtocolTest, GrsimReplacementMovesARobot) {
       return false;
     }, seconds(1));
   }
-  EXPECT_TRUE(seen);
+  EXPECT_TRUE(seen) << "the simulator printed: " << printed(simulator);
 
   // A grSim client gets its robots' status on port 30012 (yellow) of its own address.
   auto status_socket = net::UdpSocket::open("127.0.0.1", 30012);
@@ -210,7 +218,7 @@ TEST(SimulatorProtocolTest, GrsimReplacementMovesARobot) {
   ASSERT_TRUE(client->send_to(local(ports.grsim), league::byte_span(commands.SerializeAsString())).ok());
   std::array<std::uint8_t, 65536> buffer;
   const auto received = status_socket->receive(buffer, seconds(10));
-  ASSERT_TRUE(received.ok());
+  ASSERT_TRUE(received.ok()) << "the simulator printed: " << printed(simulator);
   auto status = league::decode_grsim_robots_status(std::span(buffer).first(received.size));
   ASSERT_TRUE(status) << status.error().message;
   EXPECT_EQ(status->robots_status_size(), 2);  // both yellow robots on the field
@@ -220,7 +228,7 @@ TEST(SimulatorProtocolTest, GrsimReplacementMovesARobot) {
 }
 
 TEST(SimulatorProtocolTest, LockstepAdvancesExactlyTheRequestedStep) {
-  const Ports ports(42400);
+  const Ports ports(22400);
   auto simulator = start_simulator(ports, "lockstep");
   auto client = net::UdpSocket::open("127.0.0.1", 0);
   ASSERT_TRUE(client);

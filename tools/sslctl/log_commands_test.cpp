@@ -1,5 +1,5 @@
 // Tests of `sslctl log record | replay | info`: the command functions called directly with string
-// streams (recording and replaying over loopback multicast on ports 45100-45399), byte-level checks of
+// streams (recording and replaying over loopback multicast on ports 25100-25399), byte-level checks of
 // the league's file layout, and the sslctl binary itself for Ctrl-C and the CLI.
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -332,7 +332,7 @@ void expect_recorded(const std::vector<league::LogRecord>& records, const SentSt
 TEST(SslctlLogRecord, RecordsEveryDatagramWithItsTypeAndPayloadAndAnIndex) {
   TempFile file("record.log");
   ShutdownSignal shutdown;
-  LogRecordOptions options{.file = file.string(), .ports = ports_from(45110), .progress_period_s = 0.05};
+  LogRecordOptions options{.file = file.string(), .ports = ports_from(25110), .progress_period_s = 0.05};
   RecorderProbe probe;
   probe.hook(options);
   std::ostringstream out;
@@ -368,7 +368,7 @@ TEST(SslctlLogRecord, RecordsEveryDatagramWithItsTypeAndPayloadAndAnIndex) {
 TEST(SslctlLogRecord, FileHasTheLeaguesByteLayoutWithTheGoToolsIndexTrailer) {
   TempFile file("layout.log");
   ShutdownSignal shutdown;
-  LogRecordOptions options{.file = file.string(), .ports = ports_from(45120), .progress_period_s = 0};
+  LogRecordOptions options{.file = file.string(), .ports = ports_from(25120), .progress_period_s = 0};
   RecorderProbe probe;
   probe.hook(options);
   std::ostringstream out;
@@ -416,7 +416,7 @@ TEST(SslctlLogRecord, FileHasTheLeaguesByteLayoutWithTheGoToolsIndexTrailer) {
 TEST(SslctlLogRecord, GzipSuffixWritesAGzipFileWithoutIndex) {
   TempFile file("record.log.gz");
   ShutdownSignal shutdown;
-  LogRecordOptions options{.file = file.string(), .ports = ports_from(45130), .progress_period_s = 0};
+  LogRecordOptions options{.file = file.string(), .ports = ports_from(25130), .progress_period_s = 0};
   RecorderProbe probe;
   probe.hook(options);
   std::ostringstream out;
@@ -442,7 +442,7 @@ TEST(SslctlLogRecord, StopsAfterDurationAndPrintsProgress) {
   TempFile file("duration.log");
   ShutdownSignal shutdown;
   LogRecordOptions options{.file = file.string(),
-                           .ports = ports_from(45140),
+                           .ports = ports_from(25140),
                            .duration_s = 0.4,
                            .legacy = false,
                            .progress_period_s = 0.1};
@@ -462,13 +462,13 @@ TEST(SslctlLogRecord, RejectsTwoStreamsOnOnePortAndBadInterfaces) {
   ShutdownSignal shutdown;
   std::ostringstream out;
   std::ostringstream err;
-  LogRecordOptions shared{.file = file.string(), .ports = {.vision = 45150, .tracker = 45150}};
+  LogRecordOptions shared{.file = file.string(), .ports = {.vision = 25150, .tracker = 25150}};
   EXPECT_EQ(log_record(shared, shutdown, out, err), 2);
-  EXPECT_NE(err.str().find("cannot share 224.5.23.2:45150"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("cannot share 224.5.23.2:25150"), std::string::npos) << err.str();
 
   err.str("");
   LogRecordOptions bad_interface{
-      .file = file.string(), .ports = ports_from(45151), .interface_address = "not-an-address"};
+      .file = file.string(), .ports = ports_from(25151), .interface_address = "not-an-address"};
   EXPECT_EQ(log_record(bad_interface, shutdown, out, err), 1);
   EXPECT_NE(err.str().find("cannot receive the vision stream"), std::string::npos) << err.str();
   EXPECT_FALSE(fs::exists(file.path()));  // no empty log left behind
@@ -476,7 +476,7 @@ TEST(SslctlLogRecord, RejectsTwoStreamsOnOnePortAndBadInterfaces) {
 
 TEST(SslctlLogRecord, BinaryStopsOnSigintAndKeepsEveryDatagramSentBefore) {
   TempFile file("sigint.log");
-  const LogStreamPorts ports = ports_from(45160);
+  const LogStreamPorts ports = ports_from(25160);
   auto child = testing::ChildProcess::start(
       testing::bin_dir() / "sslctl",
       {"log", "record", file.string(), "--vision-port", std::to_string(ports.vision), "--legacy-vision-port",
@@ -511,7 +511,7 @@ TEST(SslctlLogReplay, SendsEveryPayloadInOrderWithTheTimingScaledBySpeed) {
     expected.push_back(records.back().payload);
   }
   write_log(file.path(), records);
-  const LogStreamPorts ports = ports_from(45210);
+  const LogStreamPorts ports = ports_from(25210);
   auto receiver = open_receiver(kVisionGroup, ports.vision);
 
   ShutdownSignal shutdown;
@@ -551,7 +551,7 @@ TEST(SslctlLogReplay, RoutesEachTypeToItsGroupAndPortAndSkipsOtherTypes) {
              {kStartNs + 5 * kMs, static_cast<MessageType>(42), "future type"},
              {kStartNs + 6 * kMs, MessageType::kVisionTracker2020, tracker}},
             /*index=*/true);
-  const LogStreamPorts ports = ports_from(45220);
+  const LogStreamPorts ports = ports_from(25220);
   auto vision_rx = open_receiver(kVisionGroup, ports.vision);
   auto legacy_rx = open_receiver(kVisionGroup, ports.legacy_vision);
   auto referee_rx = open_receiver(kRefereeGroup, ports.referee);
@@ -579,7 +579,7 @@ TEST(SslctlLogReplay, LoopStartsOverUntilStopped) {
   write_log(file.path(), {{kStartNs, MessageType::kRefbox2013, payload_of(0)},
                           {kStartNs + 10 * kMs, MessageType::kRefbox2013, payload_of(1)},
                           {kStartNs + 20 * kMs, MessageType::kRefbox2013, payload_of(2)}});
-  const LogStreamPorts ports = ports_from(45230);
+  const LogStreamPorts ports = ports_from(25230);
   auto receiver = open_receiver(kRefereeGroup, ports.referee);
   ShutdownSignal shutdown;
   std::ostringstream out;
@@ -607,7 +607,7 @@ TEST(SslctlLogReplay, DamagedFileIsReplayedUpToTheDamageThenFailsWithTheOffset) 
   const std::string bytes = read_bytes(file.path());
   write_bytes(file.path(), bytes.substr(0, bytes.size() - 3));  // cuts the last payload short
 
-  const LogStreamPorts ports = ports_from(45240);
+  const LogStreamPorts ports = ports_from(25240);
   auto receiver = open_receiver(kVisionGroup, ports.vision);
   ShutdownSignal shutdown;
   std::ostringstream out;
@@ -629,10 +629,10 @@ TEST(SslctlLogReplay, RejectsBadArgumentsAndFilesThatAreNotLogs) {
   EXPECT_EQ(log_replay({.file = file.string(), .speed = 0}, shutdown, out, err), 2);
   EXPECT_NE(err.str().find("--speed"), std::string::npos) << err.str();
   err.str("");
-  EXPECT_EQ(log_replay({.file = file.string(), .ports = ports_from(45250)}, shutdown, out, err), 1);
+  EXPECT_EQ(log_replay({.file = file.string(), .ports = ports_from(25250)}, shutdown, out, err), 1);
   EXPECT_NE(err.str().find("not an SSL log file"), std::string::npos) << err.str();
   err.str("");
-  EXPECT_EQ(log_replay({.file = file.string() + ".missing", .ports = ports_from(45250)}, shutdown, out, err),
+  EXPECT_EQ(log_replay({.file = file.string() + ".missing", .ports = ports_from(25250)}, shutdown, out, err),
             1);
   EXPECT_NE(err.str().find("cannot open"), std::string::npos) << err.str();
 }
@@ -808,7 +808,7 @@ TEST(SslctlLogFormat, InfoAndReplayReadAHandBuiltIndexedFile) {
   EXPECT_EQ(json["cameras"]["frames"]["5"], 2);
   EXPECT_EQ(json["referee"]["stages"], nlohmann::json::array({"POST_GAME"}));
 
-  const LogStreamPorts ports = ports_from(45310);
+  const LogStreamPorts ports = ports_from(25310);
   auto vision_rx = open_receiver(kVisionGroup, ports.vision);
   auto referee_rx = open_receiver(kRefereeGroup, ports.referee);
   ShutdownSignal shutdown;

@@ -1,6 +1,6 @@
 // Tests of the match report: the pure builder with scripted referee states at explicit times, and
 // `sslctl match report` on an SSL log file (the function and the binary) and live on loopback multicast
-// (ports 45400-45499).
+// (ports 25400-25499).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -252,8 +252,8 @@ TEST(MatchReportCommand, TheBinaryPrintsTheReportOfALogAndRejectsBadFlags) {
 }
 
 TEST(MatchReportCommand, ReadsTheLiveRefereeAndVisionMulticast) {
-  constexpr int kRefereePort = 45401;
-  constexpr int kVisionPort = 45402;
+  constexpr int kRefereePort = 25401;
+  constexpr int kVisionPort = 25402;
   auto referee_out = net::MulticastSender::open("224.5.23.1", kRefereePort, "127.0.0.1");
   auto vision_out = net::MulticastSender::open("224.5.23.2", kVisionPort, "127.0.0.1");
   ASSERT_TRUE(referee_out && vision_out);
