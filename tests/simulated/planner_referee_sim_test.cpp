@@ -1,7 +1,8 @@
-// Referee scenarios in LOCKSTEP with the real cores: the Bullet simulator (6 v 6, `realistic` vision noise,
-// division B and A fields), one WorldModel per team fed with the simulator's camera frames, its dribbler
-// feedback and the commands its team sent, one Planner per team (blue and yellow, each with its own colour)
-// and a scripted referee both planners see. Every 10 ms tick: referee -> world models -> planners ->
+// Referee scenarios in LOCKSTEP with the real cores, on the one lockstep match harness
+// (services/planner/testing/planned_match.h): the Bullet simulator (6 v 6, `realistic` vision noise, division
+// B and A fields), one WorldModel per team fed with the simulator's camera frames, its dribbler feedback and
+// the commands its team sent, one Planner per team (blue and yellow, each with its own colour, planning with
+// the deployed actuation latency) and a scripted referee both planners see. Every 10 ms tick: referee -> world models -> planners ->
 // simulator commands (local velocities, flat kick / chip, dribbler) -> 10 ms of simulated time -> camera
 // frames into the world models -> validation functions. Simulated time only: no threads, no sleeps, no DDS;
 // the same seed gives the same match (PLANNER_SIM_SEED=n runs another seed).
@@ -62,6 +63,7 @@
 #include "services/planner/core/planner.h"
 #include "services/planner/core/planner_test_util.h"
 #include "services/planner/core/skills.h"
+#include "services/planner/testing/planned_match.h"
 #include "services/simulator/core/simulator.h"
 #include "services/world_model/core/sim_harness.h"
 #include "libs/domain/team_frame.h"
@@ -143,28 +145,21 @@ struct RefereeEvent {
   std::optional<Vec2> designated;  // OUR team frame
 };
 
-/// The two team stacks and the simulator, stepped together. Positions given and returned in OUR frame.
+/// A scenario's view of the lockstep match (services/planner/testing, the one harness): positions given and
+/// returned in OUR team frame, and the ground truth after each tick with who touched the ball.
 class LockstepMatch {
  public:
   LockstepMatch(const Case& c, std::uint64_t seed)
-      : case_(c), side_(c.side), field_(c.field()), us_frame_(c.side.frame()), sim_(options(field_, seed)) {
-    const Side& side = c.side;
-    for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
-      Team& t = team_of(team);
-      t.color = team;
-      wm::WorldModelConfig model_config;
-      model_config.team = team;
-      t.model.emplace(model_config);
-      t.model->on_geometry(wm::testing::from_sim(sim_.geometry()));
-      PlannerConfig planner_config;
-      planner_config.team = team;
-      planner_config.default_field = field_;
-      t.planner.emplace(planner_config);
-    }
-    referee_.blue_team_on_positive_half = side.blue_on_positive_half;
-    referee_.blue_goalkeeper = 0;
-    referee_.yellow_goalkeeper = 0;
-    set_command(RefereeCommand::kHalt, std::nullopt, std::nullopt);
+      : case_(c),
+        side_(c.side),
+        field_(c.field()),
+        us_frame_(c.side.frame()),
+        match_({.field = field_,
+                .robots = kRobots,
+                .seed = seed,
+                .blue_on_positive_half = c.side.blue_on_positive_half,
+                .actuation_latency = PlannerConfig().actuation_latency}) {
+    refresh_truth();
   }
 
   TeamColor us() const { return side_.us; }
@@ -172,9 +167,9 @@ class LockstepMatch {
   const Case& test_case() const { return case_; }
   double half_length() const { return field_.field_length / 2; }
   TeamColor them() const { return opponent(side_.us); }
-  double time() const { return ticks_ * kTick; }
+  double time() const { return match_.elapsed(); }
   const Truth& truth() const { return truth_; }
-  const sim::Simulator& sim() const { return sim_; }
+  const sim::Simulator& sim() const { return match_.sim(); }
 
   /// Teleports: robot `id` of us / them, ball. Our team frame; heading in our team frame.
   void place(bool ours, std::uint32_t id, const Vec2& p, double heading) {
@@ -188,20 +183,19 @@ class LockstepMatch {
                               .vy = 0,
                               .angular = 0,
                               .present = true});
-    EXPECT_TRUE(sim_.apply(request).empty());
+    EXPECT_TRUE(sim_apply(request));
   }
   void place_ball(const Vec2& p) {
     const Vec2 v = us_frame_.to_vision_point(p);
     sim::ControlRequest request;
     request.ball = sim::BallTeleport{.x = v.x(), .y = v.y(), .z = kBallRadius};
-    EXPECT_TRUE(sim_.apply(request).empty());
-    refresh_truth();
+    EXPECT_TRUE(sim_apply(request));
   }
 
   /// Sets the ball rolling where it is with velocity `v` (our frame).
   void roll_ball(const Vec2& v) {
     const Vec2 w = us_frame_.vector(v);
-    const sim::WorldSnapshot snap = sim_.snapshot();
+    const sim::WorldSnapshot snap = match_.sim().snapshot();
     sim::ControlRequest request;
     request.ball = sim::BallTeleport{.x = snap.ball.position.x(),
                                      .y = snap.ball.position.y(),
@@ -210,116 +204,38 @@ class LockstepMatch {
                                      .vy = w.y(),
                                      .vz = 0,
                                      .roll = true};
-    EXPECT_TRUE(sim_.apply(request).empty());
+    EXPECT_TRUE(sim_apply(request));
   }
-  void script(std::vector<RefereeEvent> events) { script_ = std::move(events); }
+  /// The referee's script; designated positions in OUR team frame.
+  void script(const std::vector<RefereeEvent>& events) {
+    std::vector<testing::ScriptedCommand> commands;
+    for (const RefereeEvent& e : events) {
+      commands.push_back({.at = e.at, .command = e.command, .next = e.next, .designated = std::nullopt});
+      if (e.designated) commands.back().designated = us_frame_.to_vision_point(*e.designated);
+    }
+    match_.script(std::move(commands));
+  }
   /// Applies a simulator control request; true when it was accepted whole.
   bool sim_apply(const sim::ControlRequest& request) {
-    const bool ok = sim_.apply(request).empty();
+    const bool ok = match_.apply(request);
     refresh_truth();
     return ok;
   }
 
   /// One lockstep tick: referee, both stacks, 10 ms of simulation, camera frames, ground truth.
   void tick() {
-    while (next_event_ < script_.size() && script_[next_event_].at <= time() + 1e-9) {
-      const RefereeEvent& e = script_[next_event_++];
-      set_command(e.command, e.next, e.designated);
-    }
-    const time::Timestamp now = sim_.time();
-    for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) step_team(team_of(team), now);
-    const sim::StepOutput out = sim_.step(std::chrono::milliseconds(10));
-    const time::Timestamp after = sim_.time();
-    for (const sim::DetectionFrame& frame : out.frames) {
-      const wm::DetectionFrame converted = wm::testing::from_sim(frame);
-      for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow})
-        team_of(team).model->on_detection(converted, after);
-    }
-    for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
-      for (const sim::RobotFeedback& f : sim_.feedback(team)) {
-        team_of(team).model->on_feedback({.id = f.id, .ball_in_dribbler = f.dribbler_ball_contact}, after);
-      }
-    }
-    ++ticks_;
+    match_.step();
     refresh_truth();
   }
 
   /// The last planner output of a team (debug: roles, play).
-  const PlannerOutput& output(bool ours) const { return ours ? team_of(us()).out : team_of(them()).out; }
+  const PlannerOutput& output(bool ours) const { return match_.output(ours ? us() : them()); }
   /// A team's planner (to run single skills: Planner::override_skill).
-  Planner& planner(bool ours) { return ours ? *team_of(us()).planner : *team_of(them()).planner; }
+  Planner& planner(bool ours) { return match_.planner(ours ? us() : them()); }
 
  private:
-  struct Team {
-    TeamColor color = TeamColor::kBlue;
-    std::optional<wm::WorldModel> model;
-    std::optional<Planner> planner;
-    PlannerOutput out;
-    std::vector<sim::RobotCommandFor> commands;
-    std::vector<wm::RobotCommand> sent;
-  };
-
-  static sim::SimulatorOptions options(const sim::FieldGeometry& field, std::uint64_t seed) {
-    sim::SimulatorOptions o;
-    o.field = field;
-    o.robots_per_team = kRobots;
-    o.seed = seed;
-    o.vision.realism = sim::RealismConfig::realistic();
-    return o;
-  }
-
-  Team& team_of(TeamColor c) { return c == TeamColor::kBlue ? blue_ : yellow_; }
-  const Team& team_of(TeamColor c) const { return c == TeamColor::kBlue ? blue_ : yellow_; }
-
-  void set_command(RefereeCommand command, std::optional<RefereeCommand> next,
-                   std::optional<Vec2> designated) {
-    ++referee_.command_counter;
-    referee_.command = command;
-    referee_.next_command = next;
-    referee_.designated_position.reset();
-    if (designated) referee_.designated_position = us_frame_.to_vision_point(*designated);
-  }
-
-  void step_team(Team& t, time::Timestamp now) {
-    t.model->on_referee(referee_, now);
-    PlannerInputs inputs{.world = t.model->state(now), .referee = referee_, .field = t.model->field().size()};
-    t.planner->step(inputs, now, t.out);
-    // Robots the planner did not command (not visible) stop, as robot_link does with stale commands.
-    t.commands.clear();
-    t.sent.clear();
-    for (std::uint32_t id = 0; id < kRobots; ++id) {
-      sim::RobotCommandFor c{.id = id, .command = {}};
-      c.command.move = sim::RobotCommand::Move::kLocalVelocity;
-      t.commands.push_back(c);
-    }
-    for (const RobotCommand& c : t.out.commands) {
-      if (c.id >= kRobots) continue;
-      sim::RobotCommand& s = t.commands[c.id].command;
-      s.velocity = sim::Vec3(c.forward, c.left, c.angular);
-      if (c.kick == KickType::kFlat) {
-        s.kick_speed = c.kick_speed;
-        s.kick_angle = 0;
-      } else if (c.kick == KickType::kChip) {
-        s.kick_speed = c.kick_speed;
-        s.kick_angle = c.chip_angle;
-      }
-      s.dribbler_rpm = c.dribbler_rpm;
-    }
-    // Robots taken off the field get no command.
-    std::erase_if(t.commands, [&](const sim::RobotCommandFor& c) {
-      return std::none_of(truth_.robots.begin(), truth_.robots.end(), [&](const TrueRobot& r) {
-        return r.id == c.id && r.ours == (t.color == us());
-      });
-    });
-    EXPECT_TRUE(sim_.set_commands(t.color, t.commands).empty());
-    for (const sim::RobotCommandFor& c : t.commands) {
-      t.sent.push_back({c.id, c.command.velocity.x(), c.command.velocity.y(), c.command.velocity.z()});
-    }
-    t.model->on_commands(t.sent, now);
-  }
-
   void refresh_truth() {
-    const sim::WorldSnapshot snap = sim_.snapshot();
+    const sim::WorldSnapshot snap = match_.sim().snapshot();
     const Vec2 previous_velocity = truth_.ball_velocity;
     truth_.ball = us_frame_.point(snap.ball.position.head<2>());
     truth_.ball_velocity = us_frame_.vector(snap.ball.velocity.head<2>());
@@ -352,13 +268,7 @@ class LockstepMatch {
   Side side_;
   sim::FieldGeometry field_;
   wm::TeamFrame us_frame_;
-  sim::Simulator sim_;
-  Team blue_;
-  Team yellow_;
-  wm::RefereeInfo referee_;
-  std::vector<RefereeEvent> script_;
-  std::size_t next_event_ = 0;
-  std::int64_t ticks_ = 0;
+  testing::PlannedMatch match_;
   Truth truth_;
 };
 

@@ -1,5 +1,6 @@
 #include "services/planner/testing/planned_match.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "libs/domain/idl_convert.h"
@@ -13,7 +14,7 @@ PlannerConfig planner_config(TeamColor team, const PlannedMatchOptions& options)
   config.team = team;
   config.motion = options.motion;
   config.strategy = team == TeamColor::kBlue ? options.blue_strategy : options.yellow_strategy;
-  config.actuation_latency = 0;  // in lockstep a command acts on the simulated robot at once
+  config.actuation_latency = options.actuation_latency;
   config.default_field = options.field;
   return config;
 }
@@ -58,6 +59,10 @@ const wm::WorldModel& PlannedMatch::model(TeamColor team) const {
 
 const PlannerOutput& PlannedMatch::output(TeamColor team) const {
   return team == teams_[0].color ? teams_[0].out : teams_[1].out;
+}
+
+Planner& PlannedMatch::planner(TeamColor team) {
+  return team == teams_[0].color ? teams_[0].planner : teams_[1].planner;
 }
 
 wm::WorldModel& PlannedMatch::model_of(TeamColor team) {
@@ -120,11 +125,15 @@ void PlannedMatch::tick(wm::testing::SimHarness& harness) {
   } else {
     const double t = time::to_seconds(now - start_);
     while (next_command_ < script_.size() && script_[next_command_].at <= t + 1e-9) {
-      scripted_.command = script_[next_command_++].command;
+      const ScriptedCommand& issued = script_[next_command_++];
+      scripted_.command = issued.command;
+      scripted_.next_command = issued.next;
+      scripted_.designated_position = issued.designated;
       ++scripted_.command_counter;
     }
   }
   const wm::RefereeInfo referee = referee_info();
+  const sim::WorldSnapshot on_field = harness.sim().snapshot();
   for (Team& team : teams_) {
     wm::WorldModel& model = model_of(team.color);
     model.on_referee(referee, now);
@@ -147,6 +156,11 @@ void PlannedMatch::tick(wm::testing::SimHarness& harness) {
       if (c.kick == KickType::kChip) s.kick_angle = c.chip_angle;
       s.dribbler_rpm = c.dribbler_rpm;
     }
+    // Robots taken off the field get no command.
+    std::erase_if(commands, [&](const sim::RobotCommandFor& c) {
+      return std::none_of(on_field.robots.begin(), on_field.robots.end(),
+                          [&](const sim::RobotState& r) { return r.key.team == team.color && r.key.id == c.id; });
+    });
     // The harness tells its (blue) model; yellow's model is told here.
     harness.command(team.color, commands, team.color == TeamColor::kBlue);
     if (team.color == TeamColor::kYellow) {

@@ -1,11 +1,12 @@
-// PlannedMatch: a whole simulated match in one process and in LOCKSTEP on the simulated clock: the Bullet
-// simulator (realistic vision), and for each team a WorldModel fed with every camera frame, its dribbler
-// feedback and its own commands, and a Planner ticking every 10 ms on its world model's state. The referee
-// both teams see is either a script of commands or the built-in referee (services/referee_gateway/builtin)
-// with a profile, stepped every 10 ms on the true world, its ball placements done by the simulator as
-// `./ssl up` has them done (builtin.teleport_placement). No threads, no sleeps, no DDS: the same seed gives
-// the same match. Used by tests that check the world model against the ground truth in a realistic game,
-// by the whole-match tests and by the full-match benchmark (real-time factor).
+// PlannedMatch: THE lockstep match harness. A whole simulated match in one process and in LOCKSTEP on the
+// simulated clock: the Bullet simulator (realistic vision), and for each team a WorldModel fed with every
+// camera frame, its dribbler feedback and its own commands, and a Planner ticking every 10 ms on its world
+// model's state. The referee both teams see is either a script of commands or the built-in referee
+// (services/referee_gateway/builtin) with a profile, stepped every 10 ms on the true world, its ball
+// placements done by the simulator as `./ssl up` has them done (builtin.teleport_placement). No threads, no
+// sleeps, no DDS: the same seed gives the same match. Used by the referee and skill scenarios, the
+// whole-match tests, the world model's accuracy checks against the ground truth, bench/match_series and the
+// full-match benchmark (real-time factor).
 //
 //   testing::PlannedMatch match({.field = sim::FieldGeometry::division_b(), .robots = 6, .seed = 7});
 //   match.script({{0.0, wm::RefereeCommand::kStop}, {2.0, wm::RefereeCommand::kForceStart}});
@@ -14,6 +15,9 @@
 //   PlannedMatch refereed({.robots = 6, .referee = *referee::load_referee_profile("simulation")});
 //   refereed.start_match();                          // the operator's first STOP
 //   refereed.run_until_final_whistle(20min, nullptr);
+//
+// Scenarios set the stage with apply() (teleports, robots taken off), drive single skills through
+// planner(team).override_skill(...) and advance one planner period at a time with step().
 #pragma once
 
 #include <chrono>
@@ -39,14 +43,19 @@ struct PlannedMatchOptions {
   /// With a profile, the built-in referee runs the match and script() is not used.
   std::optional<referee::RefereeProfile> referee;
   MotionControl motion = PlannerConfig().motion;  // both teams' skill layer
+  /// s both planners expect until a command acts: in lockstep it acts at once (0); a scenario may plan with
+  /// the deployed value (PlannerConfig's) as the robots on a real field need it.
+  double actuation_latency = 0;
   Strategy blue_strategy = Strategy::kBase;       // each team's strategy in normal play
   Strategy yellow_strategy = Strategy::kBase;
 };
 
-/// A referee command issued `at` seconds after the start.
+/// A referee command issued `at` seconds after the start, with what the referee announces with it.
 struct ScriptedCommand {
   double at = 0;
   wm::RefereeCommand command = wm::RefereeCommand::kHalt;
+  std::optional<wm::RefereeCommand> next;
+  std::optional<Vec2> designated;  // m, VISION frame (ball placement target)
 };
 
 class PlannedMatch {
@@ -71,6 +80,16 @@ class PlannedMatch {
   /// Ball placements the simulator did for the referee.
   std::uint64_t placements_teleported() const { return placements_teleported_; }
 
+  /// Plays one planner period (10 ms) of simulated time.
+  void step() { run(kPlannerPeriod, nullptr); }
+  /// Seconds of simulated time since the start.
+  double elapsed() const { return time::to_seconds(harness_.now() - start_); }
+  /// Applies a simulator control request (teleports, robots taken off or put back); true when it was
+  /// accepted whole. Robots off the field get no command.
+  bool apply(const sim::ControlRequest& request) { return harness_.sim().apply(request).empty(); }
+  /// A team's planner (to run single skills: Planner::override_skill).
+  Planner& planner(TeamColor team);
+
   /// Plays `duration` of simulated time; after each camera frame was given to both world models calls
   /// `after_frame(frame, truth)` with the true world at the frame's capture instant.
   void run(time::Duration duration,
@@ -78,7 +97,7 @@ class PlannedMatch {
 
   /// The world model of `team` (its team frame: our goal at negative x).
   const wm::WorldModel& model(TeamColor team) const;
-  const sim::Simulator& sim() { return harness_.sim(); }
+  const sim::Simulator& sim() const { return harness_.sim(); }
   time::Timestamp start() const { return start_; }
   /// Distance the ball travelled on the field so far (m, ground truth at the camera frames).
   double ball_travel() const { return ball_travel_; }

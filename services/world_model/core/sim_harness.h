@@ -84,6 +84,7 @@ class SimHarness {
   }
 
   sim::Simulator& sim() { return sim_; }
+  const sim::Simulator& sim() const { return sim_; }
   WorldModel& model() { return model_; }
   const WorldModel& model() const { return model_; }
   time::Timestamp now() const { return sim_.time(); }
