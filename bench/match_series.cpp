@@ -53,26 +53,6 @@ std::optional<Strategy> strategy_named(const std::string& name) {
   return std::nullopt;
 }
 
-/// Fouls a team commits by its own play and can always avoid (rules: keep-out, STOP speed, defense areas,
-/// double touch, crashes).
-bool avoidable(GameEventType type) {
-  switch (type) {
-    case GameEventType::kDefenderTooCloseToKickPoint:
-    case GameEventType::kBotTooFastInStop:
-    case GameEventType::kDefenderInDefenseArea:
-    case GameEventType::kDefenderInDefenseAreaPartially:
-    case GameEventType::kAttackerTouchedBallInDefenseArea:
-    case GameEventType::kAttackerTooCloseToDefenseArea:
-    case GameEventType::kAttackerDoubleTouchedBall:
-    case GameEventType::kBotCrashUnique:
-    case GameEventType::kBotCrashUniqueSkipped:
-    case GameEventType::kBotCrashDrawn:
-      return true;
-    default:
-      return false;
-  }
-}
-
 struct Pairing {
   std::string a;
   std::string b;
@@ -218,7 +198,7 @@ void add(Totals& t, const nlohmann::json& match, const char* us, const char* the
     t.events[type] += count;
     const auto parsed = ssl::referee::parse_game_event_type(type);
     if (parsed && ssl::referee::is_foul(*parsed)) t.fouls += count;
-    if (parsed && avoidable(*parsed)) t.avoidable_fouls += count;
+    if (parsed && ssl::referee::is_avoidable_foul(*parsed)) t.avoidable_fouls += count;
   }
 }
 
@@ -259,7 +239,7 @@ void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& ma
   std::printf("  game events by type (per match; * foul, !! avoidable foul)\n");
   for (const std::string& type : types) {
     const auto parsed = ssl::referee::parse_game_event_type(type);
-    const char* mark = parsed && avoidable(*parsed) ? "!!" : parsed && ssl::referee::is_foul(*parsed) ? "* " : "  ";
+    const char* mark = parsed && ssl::referee::is_avoidable_foul(*parsed) ? "!!" : parsed && ssl::referee::is_foul(*parsed) ? "* " : "  ";
     std::printf("  %s %-29s %14.2f %14.2f\n", mark, type.c_str(), a.events[type] / n, b.events[type] / n);
   }
   if (print_tactics) {

@@ -149,7 +149,8 @@ struct RefereeEvent {
 /// returned in OUR team frame, and the ground truth after each tick with who touched the ball.
 class LockstepMatch {
  public:
-  LockstepMatch(const Case& c, std::uint64_t seed)
+  /// Both teams play `ours` / `theirs` in normal play (the base strategy unless a scenario says otherwise).
+  LockstepMatch(const Case& c, std::uint64_t seed, Strategy ours = Strategy::kBase, Strategy theirs = Strategy::kBase)
       : case_(c),
         side_(c.side),
         field_(c.field()),
@@ -158,7 +159,9 @@ class LockstepMatch {
                 .robots = kRobots,
                 .seed = seed,
                 .blue_on_positive_half = c.side.blue_on_positive_half,
-                .actuation_latency = PlannerConfig().actuation_latency}) {
+                .actuation_latency = PlannerConfig().actuation_latency,
+                .blue_strategy = c.side.us == TeamColor::kBlue ? ours : theirs,
+                .yellow_strategy = c.side.us == TeamColor::kBlue ? theirs : ours}) {
     refresh_truth();
   }
 
@@ -1057,6 +1060,77 @@ TEST_P(PlannerSimReferee, TwoAgainstNobodyPassWhenTheShotIsPoorAndScore) {
   EXPECT_TRUE(passed) << "robot 1 never played the pass";
   EXPECT_TRUE(received) << "robot 2 never touched the ball after the pass";
   EXPECT_TRUE(scored) << "no goal within 12 s; the ball ended at " << m.truth().ball.transpose();
+}
+
+/// Who touched the ball last: nullopt until somebody did.
+struct LastTouch {
+  std::optional<bool> ours;
+  void update(const Truth& truth) {
+    for (const TrueRobot& r : truth.robots) {
+      if (r.touching) ours = r.ours;
+    }
+  }
+};
+
+/// Where a ball past a goal line went: +1 into their goal, -1 into ours, 0 still in play or out elsewhere.
+int goal_of(const LockstepMatch& m) {
+  const Vec2& ball = m.truth().ball;
+  if (std::abs(ball.x()) <= m.half_length() || std::abs(ball.y()) >= m.field().goal_width / 2) return 0;
+  return ball.x() > 0 ? 1 : -1;
+}
+
+TEST_P(PlannerSimReferee, DefendAgainstAStraightAttacker) {
+  // Their one field player plays the ball_chaser strategy (straight at the ball, straight at our goal) from
+  // the centre, the ball between it and our half; our whole team plays the base strategy. For 15 s: no goal
+  // against us, and one of ours wins the ball (touches it) within 8 s.
+  LockstepMatch m(param(), seed(), Strategy::kBase, Strategy::kBallChaser);
+  default_layout(m);
+  for (std::uint32_t id = 2; id < kRobots; ++id) take_off(m, false, id);
+  const double hl = m.half_length();
+  m.place(false, 0, {hl - 0.3, 0}, M_PI);
+  m.place(false, 1, {0.6, 0.2}, M_PI);
+  m.place_ball({0.3, 0.2});
+  m.script({{kWarmUp, RefereeCommand::kForceStart}});
+  std::optional<double> won;
+  int goal = 0;
+  while (m.time() < kWarmUp + 15.0 && goal != -1) {
+    m.tick();
+    goal = goal_of(m);
+    for (const TrueRobot& r : m.truth().robots) {
+      if (r.ours && r.touching && !won) won = m.time() - kWarmUp;
+    }
+  }
+  EXPECT_NE(goal, -1) << "their straight attacker scored at " << m.time() - kWarmUp << " s";
+  ASSERT_TRUE(won) << "none of ours touched the ball in 15 s";
+  EXPECT_LE(*won, 8.0) << "ours won the ball only after " << *won << " s";
+  print_figures("StraightAttack", param(), "ball won after " + Always::fmt(*won) + " s");
+}
+
+TEST_P(PlannerSimReferee, DefendATwoAgainstOneCounterAttack) {
+  // A counter-attack: their two field players (base strategy, passing) start at the centre line with the ball;
+  // we have our keeper and one defender, back in our half. For 10 s: no goal against us.
+  LockstepMatch m(param(), seed());
+  for (std::uint32_t id = 2; id < kRobots; ++id) take_off(m, true, id);
+  for (std::uint32_t id = 3; id < kRobots; ++id) take_off(m, false, id);
+  const double hl = m.half_length();
+  m.place(true, 0, {-hl + 0.3, 0}, 0.0);
+  m.place(true, 1, {-2.0, 0.3}, 0.0);
+  m.place(false, 0, {hl - 0.3, 0}, M_PI);
+  m.place(false, 1, {0.2, 0.6}, M_PI);
+  m.place(false, 2, {0.3, -1.2}, M_PI);
+  m.place_ball({0.2 - (kR + kBallRadius + 0.005), 0.6});
+  m.script({{kWarmUp, RefereeCommand::kForceStart}});
+  LastTouch last;
+  int goal = 0;
+  while (m.time() < kWarmUp + 10.0 && goal != -1) {
+    m.tick();
+    last.update(m.truth());
+    goal = goal_of(m);
+  }
+  EXPECT_NE(goal, -1) << "their counter-attack scored at " << m.time() - kWarmUp << " s";
+  print_figures("Counter2v1", param(),
+                std::string("last touch ") + (last.ours ? (*last.ours ? "ours" : "theirs") : "nobody") +
+                    ", ball at " + Always::fmt(m.truth().ball.x()) + ", " + Always::fmt(m.truth().ball.y()));
 }
 
 TEST_P(PlannerSimReferee, ManMarkStaysGoalSideWithinHalfAMetreOfAnOpponentRunningAt2MetresPerSecond) {

@@ -426,5 +426,20 @@ TEST(RefereeGameEventKinds, FoulsAreTheRulesFoulsAndNothingElse) {
   }
 }
 
+TEST(RefereeGameEventKinds, AvoidableFoulsAreFoulsATeamCommitsAlone) {
+  using T = GameEventType;
+  for (T avoidable : {T::kBotCrashUnique, T::kBotCrashDrawn, T::kBotTooFastInStop, T::kAttackerDoubleTouchedBall,
+                      T::kDefenderInDefenseArea, T::kAttackerTooCloseToDefenseArea, T::kDefenderTooCloseToKickPoint}) {
+    EXPECT_TRUE(is_avoidable_foul(avoidable)) << to_string(avoidable);
+    EXPECT_TRUE(is_foul(avoidable)) << to_string(avoidable);
+  }
+  // Fouls of a contest (pushing, a keeper or dribbler pressed), leaving the field, the ball's measured speed,
+  // and events that are no fouls are not counted as avoidable.
+  for (T other : {T::kBotPushedBot, T::kKeeperHeldBall, T::kBotDribbledBallTooFar, T::kBoundaryCrossing,
+                  T::kBotKickedBallTooFast, T::kGoal, T::kBallLeftFieldGoalLine, T::kUnknown}) {
+    EXPECT_FALSE(is_avoidable_foul(other)) << to_string(other);
+  }
+}
+
 }  // namespace
 }  // namespace ssl::referee

@@ -213,6 +213,25 @@ bool is_foul(GameEventType type) {
   }
 }
 
+bool is_avoidable_foul(GameEventType type) {
+  using T = GameEventType;
+  switch (type) {
+    case T::kDefenderTooCloseToKickPoint:
+    case T::kBotTooFastInStop:
+    case T::kDefenderInDefenseArea:
+    case T::kDefenderInDefenseAreaPartially:
+    case T::kAttackerTouchedBallInDefenseArea:
+    case T::kAttackerTooCloseToDefenseArea:
+    case T::kAttackerDoubleTouchedBall:
+    case T::kBotCrashUnique:
+    case T::kBotCrashUniqueSkipped:
+    case T::kBotCrashDrawn:
+      return true;
+    default:
+      return false;
+  }
+}
+
 std::optional<GameEventType> parse_game_event_type(std::string_view league_name) {
   for (std::size_t i = 0; i < kGameEventNames.size(); ++i) {
     if (kGameEventNames[i] == league_name) return static_cast<GameEventType>(i);

@@ -159,6 +159,9 @@ std::optional<TeamColor> team_of(Command command);
 /// A foul of the rules (section "Fouls"): stopping fouls, non-stopping fouls and their "skipped" variants
 /// (raised with advantage). Not fouls: ball out, goals, placements, no progress, cards, substitutions.
 bool is_foul(GameEventType type);
+/// A foul a team commits by its own play alone and can always avoid, whatever the opponent does: keep-out
+/// distances, speed in STOP, defense areas, double touch, crashes. The bar for a team's play: zero of them.
+bool is_avoidable_foul(GameEventType type);
 /// The type whose league name is `league_name` (e.g. "BOT_DROPPED_PARTS"); nullopt for unknown names.
 std::optional<GameEventType> parse_game_event_type(std::string_view league_name);
 
