@@ -389,12 +389,6 @@ constexpr double kPenaltyKickSpeed = rules::kMaxBallSpeed - 0.5;
 
 /// Our restart's kick once it may be taken: a shot, a penalty as hard as the rules allow. (A pass instead of a
 /// poor shot lost more balls than it kept: bench/match_series measured base 1.9 : 6.1 ball_chaser with it.)
-/// In normal play the keeper clears a slow ball lying in our defense area or within kKeeperClearMargin of
-/// it: no field player may fetch it there (robots keep out of our area, and an attacker behind the ball
-/// would stand inside it), so without the keeper such a ball lies until the no-progress restart.
-constexpr double kKeeperClearMargin = 0.3;    // m around our defense area
-constexpr double kKeeperClearMaxSpeed = 0.8;  // m/s: a faster ball is guarded, not chased
-
 void set_piece_kick(const Situation& s, std::uint32_t kicker, std::string_view tactic, TeamIntents& out) {
   const wm::RobotState* robot = find_robot(s, kicker);
   if (!robot) return;
@@ -714,12 +708,14 @@ void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& o
 
 // ---- base strategy --------------------------------------------------------------------------------------
 
+/// In normal play the keeper clears a slow ball lying in our defense area or within kKeeperClearMargin of
+/// it: no field player may fetch it there (robots keep out of our area, and an attacker behind the ball
+/// would stand inside it), so without the keeper such a ball lies until the no-progress restart.
+constexpr double kKeeperClearMargin = 0.3;    // m around our defense area
+constexpr double kKeeperClearMaxSpeed = 0.8;  // m/s: a faster ball is guarded, not chased
 
 bool keeper_should_clear(const Situation& s) {
-  // A keeper that took our restart's kick may not touch the ball again before another robot did (double
-  // touch); it keeps its goal instead.
-  const bool took_the_restart = s.keeper && s.restart_kicker == s.keeper;
-  return s.keeper && !took_the_restart && s.ball_known && s.ball_velocity.norm() <= kKeeperClearMaxSpeed &&
+  return s.keeper && s.ball_known && s.ball_velocity.norm() <= kKeeperClearMaxSpeed &&
          s.field.in_our_defense_area(s.ball, kKeeperClearMargin) && s.field.in_field(s.ball);
 }
 

@@ -67,11 +67,8 @@ void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& 
   const double dd = dribbler_distance(s);
   intent.orientation = geom::angle_of(u).radians();
   if (rel.dot(u) < -0.06 && std::abs(geom::cross(u, rel)) < 0.08) {
-    // Close behind it: stop a few cm short (inside the kick window of behind_ball_facing) and align there, so
-    // that an overshoot does not push the ball unkicked: a restart's ball pushed is in play, and the kick
-    // that follows is a double touch.
-    intent.target = s.ball - u * (dd + 0.03);
-    intent.max_speed = std::min(intent.max_speed, 0.6);
+    intent.target = s.ball - u * (dd + 0.01);
+    intent.max_speed = std::min(intent.max_speed, 1.0);
   } else {
     intent.target = s.ball - u * (dd + 0.2);
     intent.avoid_ball_radius = dd + 0.1;

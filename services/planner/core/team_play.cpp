@@ -310,12 +310,7 @@ std::optional<std::uint32_t> assign_roles(const Situation& s, TeamPlayMemory& m,
     m.role_of[id] = slot.role;
     m.formation[id] = slot.anchor;
     m.marked[id] = slot.opponent;
-    MotionIntent intent = role_default(s, *find_robot(s, id), slot);
-    // Our restart's kicker goes round the ball on its way until another robot touched it (double touch).
-    if (s.restart_kicker && id == *s.restart_kicker) {
-      intent.avoid_ball_radius = std::max(intent.avoid_ball_radius, dribbler_distance(s) + 0.1);
-    }
-    write_intent(s, out, id, intent);
+    write_intent(s, out, id, role_default(s, *find_robot(s, id), slot));
   }
   return attacker;
 }
