@@ -249,7 +249,17 @@ BuiltinReferee::CleanObservation BuiltinReferee::clean(const Observation& observ
   if (observation.ball_velocity && !is_finite(*observation.ball_velocity)) invalid_ball = true;
   if (invalid_ball) ++counters_.invalid_ball;
 
+  std::optional<double> interval;  // s since the previous observation with a ball
+  const std::optional<geom::Vec2> previous_ball = last_ball_;
   if (seen.ball) {
+    if (last_ball_ && last_ball_time_ && now > *last_ball_time_) {
+      interval = time::to_seconds(now - *last_ball_time_);
+    }
+    if (observation.ball_velocity && is_finite(*observation.ball_velocity)) {
+      seen.ball_velocity = observation.ball_velocity;
+    } else if (interval && *interval <= kSpeedBaseline) {
+      seen.ball_velocity = (*seen.ball - *last_ball_) / *interval;
+    }
     if (observation.ball_velocity && is_finite(*observation.ball_velocity)) {
       seen.ball_speed = observation.ball_velocity->norm();
     } else if (speed_reference_ && now > speed_reference_->second) {
@@ -281,6 +291,9 @@ BuiltinReferee::CleanObservation BuiltinReferee::clean(const Observation& observ
     }
   }
   estimate_robot_velocities(seen, now);
+  seen.touch = toucher(seen, kTouchMargin);
+  if (!seen.touch && interval && previous_ball) seen.touch = deflected_by(seen, *previous_ball, *interval);
+  if (seen.ball) last_ball_velocity_ = seen.ball_velocity;
   return seen;
 }
 
@@ -299,8 +312,27 @@ std::optional<BuiltinReferee::Touch> BuiltinReferee::toucher(const CleanObservat
   return Touch{nearest->team, nearest->id};
 }
 
+std::optional<BuiltinReferee::Touch> BuiltinReferee::deflected_by(const CleanObservation& seen, const geom::Vec2& from,
+                                                                  double interval) const {
+  if (!seen.ball || !seen.ball_velocity || !last_ball_velocity_) return std::nullopt;
+  if ((*seen.ball_velocity - *last_ball_velocity_).norm() <= kDeflectionSpeed) return std::nullopt;
+  // It met the robot on its way: within reach of where it was running to from the previous observation.
+  const geom::Segment path{from, from + *last_ball_velocity_ * interval};
+  const ObservedRobot* nearest = nullptr;
+  double nearest_distance = field_.max_robot_radius + field_.ball_radius + kTouchMargin;
+  for (const ObservedRobot& robot : seen.robots) {
+    const double distance = geom::distance(robot.position, path);
+    if (distance <= nearest_distance) {
+      nearest_distance = distance;
+      nearest = &robot;
+    }
+  }
+  if (nearest == nullptr) return std::nullopt;
+  return Touch{nearest->team, nearest->id};
+}
+
 void BuiltinReferee::update_last_touch(const CleanObservation& seen) {
-  if (const std::optional<Touch> touch = toucher(seen, kTouchMargin)) last_touch_ = touch;
+  if (seen.touch) last_touch_ = seen.touch;
 }
 
 geom::Rectangle BuiltinReferee::defense_area_of(TeamColor defending_team) const {
@@ -514,7 +546,15 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::automatic_continuation
   if (waited < duration_from_seconds(game.stop_duration)) return std::nullopt;
   if (phase_ == Phase::kStopped && state_.next_command) {
     const Command next = *state_.next_command;
-    const std::optional<Vec2> target = placement_needed_for(next, seen.ball);
+    std::optional<Vec2> target = placement_needed_for(next, seen.ball);
+    // A free kick the referee continues with by itself, whose ball rolled on during STOP (into a defense
+    // area, too near a line): placed at the nearest legal spot first, where the kicking team can play it.
+    const bool free_kick = is_direct_free(next) || next == Command::kIndirectFreeYellow ||
+                           next == Command::kIndirectFreeBlue;
+    if (!target && automatic_next_ && free_kick && seen.ball) {
+      const Vec2 spot = legal_free_kick_spot(*seen.ball);
+      if ((spot - *seen.ball).norm() > game.placement_tolerance) target = spot;
+    }
     // The ball is placed first, even before a restart the operator will issue; without anyone to place
     // it, nothing is issued until it was placed by hand.
     if (target && !awaiting_hand_placement_) return placement_before(next, *target, automatic_next_);

@@ -164,6 +164,7 @@ class BuiltinReferee {
  public:
   static constexpr std::uint32_t kMaxRobotId = 15;
   static constexpr double kTouchMargin = 0.02;     // m beyond robot + ball radius that counts as touch
+  static constexpr double kDeflectionSpeed = 1.5;  // m/s change between observations: the ball hit something
   static constexpr double kInPlayDistance = rules::kInPlayDistance;  // m a kicked ball moves: in play
   static constexpr double kSpeedBaseline = 0.1;    // s over which an unmeasured ball speed is estimated
   static constexpr double kBallAtRestSpeed = 0.1;  // m/s
@@ -216,15 +217,20 @@ class BuiltinReferee {
     std::string reason;              // status_message
   };
 
-  struct CleanObservation {
-    std::optional<geom::Vec2> ball;
-    std::optional<double> ball_speed;  // m/s, measured or estimated from the previous position
-    std::vector<ObservedRobot> robots;
-  };
-
   struct Touch {
     TeamColor team;
     std::uint32_t id;
+  };
+
+  struct CleanObservation {
+    std::optional<geom::Vec2> ball;
+    std::optional<double> ball_speed;  // m/s, measured or estimated from the previous position
+    /// m/s, measured, or the displacement since the previous observation (noisy: used for deflections)
+    std::optional<geom::Vec2> ball_velocity;
+    std::vector<ObservedRobot> robots;
+    /// The robot touching the ball in this observation: in reach now (toucher), or the one the ball
+    /// bounced off since the previous observation (deflected_by).
+    std::optional<Touch> touch;
   };
 
   // The state machine's one transition function.
@@ -239,6 +245,11 @@ class BuiltinReferee {
   CleanObservation clean(const Observation& observation, time::Timestamp now);
   /// The robot touching the ball now: the nearest with centres within robot + ball radius + `margin`.
   std::optional<Touch> toucher(const CleanObservation& observation, double margin) const;
+  /// The robot a fast ball bounced off between two observations (a contact shorter than their interval):
+  /// the ball's velocity changed by more than kDeflectionSpeed, and the robot nearest the path it was on
+  /// from `from` (the previous position, for `interval` s) is within touching distance of that path.
+  std::optional<Touch> deflected_by(const CleanObservation& observation, const geom::Vec2& from,
+                                    double interval) const;
   /// A team's own defense area, SSL-Vision frame.
   geom::Rectangle defense_area_of(TeamColor defending_team) const;
   void track_kick(const CleanObservation& observation);
@@ -319,6 +330,7 @@ class BuiltinReferee {
 
   std::optional<geom::Vec2> last_ball_;  // latest valid ball position
   std::optional<time::Timestamp> last_ball_time_;
+  std::optional<geom::Vec2> last_ball_velocity_;  // m/s, of the latest observation with a ball
   // Ball speed without a measured velocity: the displacement from a reference at least kSpeedBaseline old.
   std::optional<std::pair<geom::Vec2, time::Timestamp>> speed_reference_;
   std::optional<double> estimated_ball_speed_;  // m/s

@@ -197,7 +197,7 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_double_touch(con
                                                                              Timestamp now) {
   const DoubleTouchRule& rule = profile_.rules.double_touch;
   if (!rule.enabled || !kicker_watch_ || !seen.ball) return std::nullopt;
-  const std::optional<Touch> touching = toucher(seen, kTouchMargin);
+  const std::optional<Touch>& touching = seen.touch;
   if (touching && (touching->team != kicker_watch_->kicker.team || touching->id != kicker_watch_->kicker.id)) {
     kicker_watch_.reset();  // another robot touched it: the kicker may play again
     return std::nullopt;

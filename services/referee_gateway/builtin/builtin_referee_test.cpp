@@ -514,6 +514,22 @@ TEST(BuiltinReferee, AnAttackerInTheOpponentsAreaGivesAFreeKickToTheDefenders) {
       << "free kicks after fouls follow by themselves";
 }
 
+TEST(BuiltinReferee, AFreeKickBallThatRolledIntoADefenseAreaDuringStopIsPlacedFirst) {
+  // The same foul at the centre; during STOP the ball rolls on into blue's defense area (blue defends +x),
+  // where no blue field player may take the kick: it is placed at the nearest legal spot first.
+  BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+  referee.step(ball_at({0, 0}, {yellow(5, {4.0, -0.5})}), at(2));
+  ASSERT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
+  referee.step(ball_at({4.2, 0.1}), at(4));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementBlue);
+  EXPECT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
+  ASSERT_TRUE(referee.state().designated_position);
+  const FieldGeometry field = FieldGeometry::division_b();
+  EXPECT_NEAR(referee.state().designated_position->x(),
+              field.field_length / 2 - field.penalty_area_depth - BuiltinReferee::kRestartDefenseAreaDistance, 1e-9)
+      << "1 m in front of the area";
+}
+
 TEST(BuiltinReferee, AnAttackerTouchingTheBallPartlyInsideTheAreaIsAFoul) {
   BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
   referee.step(ball_at({3.56, 0.0}, {yellow(8, {3.45, 0.0})}), at(1));
@@ -1124,6 +1140,29 @@ TEST(BuiltinReferee, AnotherRobotsTouchClearsTheKicker) {
   referee.step(ball_at({0.6, 0}, {yellow(2, {0.49, 0})}), at(1.5));
   EXPECT_EQ(referee.state().command, Command::kDirectFreeYellow);
   EXPECT_EQ(referee.state().yellow.foul_counter, 0u);
+}
+
+TEST(BuiltinReferee, ABallBouncingOffARobotBetweenTwoObservationsIsThatRobotsTouch) {
+  // Yellow 2's free kick runs at 5 m/s into blue 4 (centre at x = 0.8) and bounces back between two
+  // observations 10 ms apart: seen 0.15 m and then 0.14 m from blue 4's centre, never within its reach
+  // (0.13 m), but its velocity turned. Then yellow 2 plays it again: no double touch, blue 4 touched it.
+  // No measured ball velocity (as from SSL-Vision): the referee differentiates the positions.
+  const auto seen = [](Vec2 ball, std::vector<ObservedRobot> robots) {
+    return Observation{.ball_position = ball, .ball_velocity = std::nullopt, .robots = std::move(robots)};
+  };
+  for (const bool bounced : {true, false}) {
+    BuiltinReferee referee = referee_after_free_kick();
+    // Without the bounce blue 4 stands 0.2 m off the ball's line and the ball rolls on past it.
+    const Vec2 blue_at = bounced ? Vec2(0.8, 0) : Vec2(0.8, 0.2);
+    for (int i = 0; i < 3; ++i) {
+      referee.step(seen({0.55 + 0.05 * i, 0}, {yellow(2, {-0.11, 0}), blue(4, blue_at)}), at(1.2 + 0.01 * i));
+    }
+    const Vec2 after = bounced ? Vec2(0.66, 0) : Vec2(0.70, 0);
+    referee.step(seen(after, {yellow(2, {-0.11, 0}), blue(4, blue_at)}), at(1.23));
+    referee.step(seen({0.4, 0}, {yellow(2, {0.29, 0})}), at(1.5));  // yellow 2 plays it again
+    EXPECT_EQ(referee.state().yellow.foul_counter, bounced ? 0u : 1u)
+        << (bounced ? "the bounce off blue 4 is its touch" : "no touch by blue 4: a double touch");
+  }
 }
 
 TEST(BuiltinReferee, TheKickerStayingInContactCountsOnlyBeyondTheDistance) {
