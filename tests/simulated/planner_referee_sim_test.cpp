@@ -2,10 +2,10 @@
 // (services/planner/testing/planned_match.h): the Bullet simulator (6 v 6, `realistic` vision noise, division
 // B and A fields), one WorldModel per team fed with the simulator's camera frames, its dribbler feedback and
 // the commands its team sent, one Planner per team (blue and yellow, each with its own colour, planning with
-// the deployed actuation latency) and a scripted referee both planners see. Every 10 ms tick: referee -> world models -> planners ->
-// simulator commands (local velocities, flat kick / chip, dribbler) -> 10 ms of simulated time -> camera
-// frames into the world models -> validation functions. Simulated time only: no threads, no sleeps, no DDS;
-// the same seed gives the same match (PLANNER_SIM_SEED=n runs another seed).
+// the deployed actuation latency) and a scripted referee both planners see. Every 10 ms tick: referee ->
+// world models -> planners -> simulator commands (local velocities, flat kick / chip, dribbler) -> 10 ms of
+// simulated time -> camera frames into the world models -> validation functions. Simulated time only: no
+// threads, no sleeps, no DDS; the same seed gives the same match (PLANNER_SIM_SEED=n runs another seed).
 //
 // The VALIDATION FUNCTIONS (seeds/003, tests/support/validation.h) read the simulator's GROUND TRUTH (its
 // snapshot after each tick), never the world model: a planner that believes it obeys the rules but does not

@@ -81,8 +81,8 @@ wm::RefereeInfo PlannedMatch::referee_info() const {
   return *info;
 }
 
-void PlannedMatch::step_referee(wm::testing::SimHarness& harness, time::Timestamp now) {
-  const sim::WorldSnapshot truth = harness.sim().snapshot();
+void PlannedMatch::step_referee(wm::testing::SimHarness& harness, const sim::WorldSnapshot& truth,
+                                time::Timestamp now) {
   referee::Observation seen{.ball_position = truth.ball.position.head<2>(),
                             .ball_velocity = truth.ball.velocity.head<2>()};
   for (const sim::RobotState& robot : truth.robots) {
@@ -120,8 +120,11 @@ void PlannedMatch::tick(wm::testing::SimHarness& harness) {
   const time::Timestamp now = harness.now();
   if (now < next_tick_) return;
   next_tick_ = now + kPlannerPeriod;
+  // The true world at the tick: what the referee observes, and which robots are on the field (a placement
+  // teleport moves the ball and robots off its spot, never robots on or off the field).
+  const sim::WorldSnapshot truth = harness.sim().snapshot();
   if (builtin_) {
-    step_referee(harness, now);
+    step_referee(harness, truth, now);
   } else {
     const double t = time::to_seconds(now - start_);
     while (next_command_ < script_.size() && script_[next_command_].at <= t + 1e-9) {
@@ -133,7 +136,6 @@ void PlannedMatch::tick(wm::testing::SimHarness& harness) {
     }
   }
   const wm::RefereeInfo referee = referee_info();
-  const sim::WorldSnapshot on_field = harness.sim().snapshot();
   for (Team& team : teams_) {
     wm::WorldModel& model = model_of(team.color);
     model.on_referee(referee, now);
@@ -158,7 +160,7 @@ void PlannedMatch::tick(wm::testing::SimHarness& harness) {
     }
     // Robots taken off the field get no command.
     std::erase_if(commands, [&](const sim::RobotCommandFor& c) {
-      return std::none_of(on_field.robots.begin(), on_field.robots.end(),
+      return std::none_of(truth.robots.begin(), truth.robots.end(),
                           [&](const sim::RobotState& r) { return r.key.team == team.color && r.key.id == c.id; });
     });
     // The harness tells its (blue) model; yellow's model is told here.

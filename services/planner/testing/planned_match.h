@@ -110,7 +110,7 @@ class PlannedMatch {
   };
 
   void tick(wm::testing::SimHarness& harness);
-  void step_referee(wm::testing::SimHarness& harness, time::Timestamp now);
+  void step_referee(wm::testing::SimHarness& harness, const sim::WorldSnapshot& truth, time::Timestamp now);
   wm::RefereeInfo referee_info() const;
   wm::WorldModel& model_of(TeamColor team);
 

@@ -23,6 +23,20 @@ using geom::Vec2;
 using time::duration_from_seconds;
 using time::Timestamp;
 
+/// The robot with the smallest `distance_of(position)` no greater than `reach`; nullptr when none is.
+template <typename DistanceOf>
+const ObservedRobot* nearest_within(const std::vector<ObservedRobot>& robots, double reach, DistanceOf distance_of) {
+  const ObservedRobot* nearest = nullptr;
+  for (const ObservedRobot& robot : robots) {
+    const double distance = distance_of(robot.position);
+    if (distance <= reach) {
+      reach = distance;
+      nearest = &robot;
+    }
+  }
+  return nearest;
+}
+
 bool is_direct_free(Command command) {
   return command == Command::kDirectFreeYellow || command == Command::kDirectFreeBlue;
 }
@@ -257,19 +271,18 @@ BuiltinReferee::CleanObservation BuiltinReferee::clean(const Observation& observ
     }
     if (observation.ball_velocity && is_finite(*observation.ball_velocity)) {
       seen.ball_velocity = observation.ball_velocity;
-    } else if (interval && *interval <= kSpeedBaseline) {
-      seen.ball_velocity = (*seen.ball - *last_ball_) / *interval;
-    }
-    if (observation.ball_velocity && is_finite(*observation.ball_velocity)) {
       seen.ball_speed = observation.ball_velocity->norm();
-    } else if (speed_reference_ && now > speed_reference_->second) {
-      // Over at least kSpeedBaseline: between two frames 10 ms apart, 3 mm of detection noise alone would
-      // read as 0.4 m/s and a resting ball would never be at rest.
-      const double baseline = time::to_seconds(now - speed_reference_->second);
-      if (baseline >= kSpeedBaseline || !estimated_ball_speed_) {
-        estimated_ball_speed_ = (*seen.ball - speed_reference_->first).norm() / baseline;
+    } else {
+      if (interval && *interval <= kSpeedBaseline) seen.ball_velocity = (*seen.ball - *last_ball_) / *interval;
+      if (speed_reference_ && now > speed_reference_->second) {
+        // Over at least kSpeedBaseline: between two frames 10 ms apart, 3 mm of detection noise alone would
+        // read as 0.4 m/s and a resting ball would never be at rest.
+        const double baseline = time::to_seconds(now - speed_reference_->second);
+        if (baseline >= kSpeedBaseline || !estimated_ball_speed_) {
+          estimated_ball_speed_ = (*seen.ball - speed_reference_->first).norm() / baseline;
+        }
+        seen.ball_speed = estimated_ball_speed_;
       }
-      seen.ball_speed = estimated_ball_speed_;
     }
     if (!speed_reference_ || now - speed_reference_->second >= duration_from_seconds(kSpeedBaseline)) {
       speed_reference_ = {*seen.ball, now};
@@ -299,15 +312,8 @@ BuiltinReferee::CleanObservation BuiltinReferee::clean(const Observation& observ
 
 std::optional<BuiltinReferee::Touch> BuiltinReferee::toucher(const CleanObservation& seen, double margin) const {
   if (!seen.ball) return std::nullopt;
-  const ObservedRobot* nearest = nullptr;
-  double nearest_distance = field_.max_robot_radius + field_.ball_radius + margin;
-  for (const ObservedRobot& robot : seen.robots) {
-    const double distance = (robot.position - *seen.ball).norm();
-    if (distance <= nearest_distance) {
-      nearest_distance = distance;
-      nearest = &robot;
-    }
-  }
+  const ObservedRobot* nearest = nearest_within(seen.robots, field_.max_robot_radius + field_.ball_radius + margin,
+                                                [&](const Vec2& robot) { return (robot - *seen.ball).norm(); });
   if (nearest == nullptr) return std::nullopt;
   return Touch{nearest->team, nearest->id};
 }
@@ -318,15 +324,9 @@ std::optional<BuiltinReferee::Touch> BuiltinReferee::deflected_by(const CleanObs
   if ((*seen.ball_velocity - *last_ball_velocity_).norm() <= kDeflectionSpeed) return std::nullopt;
   // It met the robot on its way: within reach of where it was running to from the previous observation.
   const geom::Segment path{from, from + *last_ball_velocity_ * interval};
-  const ObservedRobot* nearest = nullptr;
-  double nearest_distance = field_.max_robot_radius + field_.ball_radius + kTouchMargin;
-  for (const ObservedRobot& robot : seen.robots) {
-    const double distance = geom::distance(robot.position, path);
-    if (distance <= nearest_distance) {
-      nearest_distance = distance;
-      nearest = &robot;
-    }
-  }
+  const double reach = field_.max_robot_radius + field_.ball_radius + kTouchMargin;
+  const ObservedRobot* nearest =
+      nearest_within(seen.robots, reach, [&](const Vec2& robot) { return geom::distance(robot, path); });
   if (nearest == nullptr) return std::nullopt;
   return Touch{nearest->team, nearest->id};
 }
@@ -549,9 +549,7 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::automatic_continuation
     std::optional<Vec2> target = placement_needed_for(next, seen.ball);
     // A free kick the referee continues with by itself, whose ball rolled on during STOP (into a defense
     // area, too near a line): placed at the nearest legal spot first, where the kicking team can play it.
-    const bool free_kick = is_direct_free(next) || next == Command::kIndirectFreeYellow ||
-                           next == Command::kIndirectFreeBlue;
-    if (!target && automatic_next_ && free_kick && seen.ball) {
+    if (!target && automatic_next_ && is_direct_free(next) && seen.ball) {
       const Vec2 spot = legal_free_kick_spot(*seen.ball);
       if ((spot - *seen.ball).norm() > game.placement_tolerance) target = spot;
     }
