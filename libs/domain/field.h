@@ -54,6 +54,16 @@ struct FieldGeometry {
 /// The defense area in front of the goal at x = goal_x_sign * field_length / 2 (goal_x_sign +1 or -1).
 geom::Rectangle defense_area(const FieldGeometry& field, double goal_x_sign);
 
+/// Rules (number of robots): a robot counts towards its team's limit while any part of it is on the field
+/// (the lines belong to it); one standing wholly beyond the field lines, being taken off, does not.
+bool counts_towards_robot_limit(const FieldGeometry& field, const geom::Vec2& robot_centre);
+
+/// Where a robot taken off the field waits: in the centre substitution area (the boundary beside the
+/// halfway line), wholly beyond the touch line at y sign `touch_line_sign` and clear of the wall, in the
+/// half at x sign `half_sign`. `slot` 0, 1, 2 ... lie 0.25 m apart, away from the halfway line, all
+/// within rules::kSubstitutionAreaHalfLength of it. Same frame as the signs.
+geom::Vec2 substitution_spot(const FieldGeometry& field, double half_sign, double touch_line_sign, int slot);
+
 /// Ok when every length is finite and positive and the goal and defense areas fit in the field.
 Status check_field_geometry(const FieldGeometry& field);
 

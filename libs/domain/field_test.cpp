@@ -37,6 +37,28 @@ TEST(FieldGeometry, TheDefenseAreasLieAgainstTheirGoalLines) {
   EXPECT_EQ(minus.max(), geom::Vec2(-3.5, 1.0));
 }
 
+TEST(FieldGeometry, ARobotCountsTowardsTheLimitUntilItIsWhollyBeyondTheLines) {
+  const FieldGeometry b = FieldGeometry::division_b();  // touch lines at y = +-3, radius 0.09
+  EXPECT_TRUE(counts_towards_robot_limit(b, {0.0, 3.09}));
+  EXPECT_FALSE(counts_towards_robot_limit(b, {0.0, 3.0901}));
+  EXPECT_TRUE(counts_towards_robot_limit(b, {-4.59, 0.0}));
+  EXPECT_FALSE(counts_towards_robot_limit(b, {-4.5901, 0.0}));
+}
+
+TEST(FieldGeometry, SubstitutionSpotsLieBesideTheHalfwayLineOffTheFieldAndClearOfTheWall) {
+  for (const FieldGeometry& field : {FieldGeometry::division_a(), FieldGeometry::division_b()}) {
+    for (int slot = 0; slot < 5; ++slot) {
+      const geom::Vec2 spot = substitution_spot(field, -1, +1, slot);
+      EXPECT_FALSE(counts_towards_robot_limit(field, spot)) << slot;
+      EXPECT_LE(spot.y() + field.max_robot_radius, field.half_width() + field.boundary_width - 0.05) << "wall";
+      EXPECT_LT(spot.x(), 0.0) << "in the asked half";
+      EXPECT_GE(spot.x(), -1.0) << "within 1 m of the halfway line";
+    }
+    EXPECT_NEAR((substitution_spot(field, -1, +1, 1) - substitution_spot(field, -1, +1, 0)).norm(), 0.25, 1e-12);
+    EXPECT_EQ(substitution_spot(field, +1, -1, 0), geom::Vec2(0.3, -field.half_width() - 0.15));
+  }
+}
+
 TEST(FieldGeometry, ImpossibleFieldsAreRejectedWithTheirKey) {
   EXPECT_TRUE(check_field_geometry(FieldGeometry::division_a()));
   EXPECT_TRUE(check_field_geometry(FieldGeometry::division_b()));

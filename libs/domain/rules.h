@@ -56,6 +56,8 @@ inline constexpr double kMaxBallSpeed = 6.5;
 inline constexpr double kMaxDribblingDistance = 1.0;
 /// Too many robots: this long to take one off.
 inline constexpr double kRobotRemovalGrace = 10.0;
+/// Substitution: the centre substitution area is the boundary within this distance of the halfway line.
+inline constexpr double kSubstitutionAreaHalfLength = 1.0;
 /// Every kFoulsPerCard-th foul of a team is a yellow card: one robot fewer for kYellowCardDuration of
 /// playing time.
 inline constexpr std::uint32_t kFoulsPerCard = 3;

@@ -9,6 +9,7 @@
 #include "services/planner/core/plays.h"
 #include "services/planner/core/rules.h"
 #include "services/planner/core/skills.h"
+#include "services/planner/core/substitution.h"
 #include "services/planner/core/team_play.h"
 #include "services/planner/core/trajectory_motion.h"
 #include "libs/domain/game_state.h"
@@ -266,7 +267,8 @@ struct Planner::Impl {
   Situation situation;
   TeamIntents intents;
   std::array<std::optional<SkillCall>, wm::kMaxRobotsPerTeam> overrides{};  // override_skill()
-  std::vector<wm::RobotState> robots;
+  std::vector<wm::RobotState> robots;   // ours, visible, by id: every robot commanded this tick
+  std::vector<wm::RobotState> players;  // the robots that stay on the field (not leaving for a card)
   std::vector<wm::RobotState> enemies;
   std::vector<bt::NodeSnapshot> rows;
   std::optional<time::Timestamp> last_now;
@@ -303,6 +305,18 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   Situation& s = situation;
   s.config = &config;
   s.field = wm::Field(inputs.field.value_or(config.default_field));
+  // Cards: the surplus leaves the field; the plays see only the players that stay.
+  std::optional<std::uint32_t> keeper_id;
+  for (const wm::RobotState& robot : robots) {
+    if (robot.id == game.our_goalkeeper()) keeper_id = robot.id;
+  }
+  memory.leaving = choose_leaving(robots, game.our_max_allowed_bots(), keeper_id, memory.leaving, s.field);
+  players.clear();
+  for (const wm::RobotState& robot : robots) {
+    if (std::find(memory.leaving.begin(), memory.leaving.end(), robot.id) == memory.leaving.end()) {
+      players.push_back(robot);
+    }
+  }
   s.game = &game;
   s.ball_known = ball_known;
   s.ball = ball;
@@ -311,7 +325,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   s.we_are_blue = config.team == TeamColor::kBlue;
   s.can_place_ball = game.we_can_place_ball();
   s.placement_target = game.ball_placement_position();
-  s.robots = robots;
+  s.robots = players;
   s.enemies = enemies;
   // Our restart's kicker stays off the ball until another robot touched it, or play stopped (double touch).
   if (memory.restart_kicker) {
@@ -328,7 +342,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   s.possessing_robot = world.possessing_robot;
   s.now = now.to_seconds();
   s.keeper.reset();
-  for (const wm::RobotState& robot : robots) {
+  for (const wm::RobotState& robot : players) {
     if (robot.id == game.our_goalkeeper()) s.keeper = robot.id;
   }
   s.zones.field = s.field;
@@ -358,7 +372,13 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   (void)board.set(kAttacker, kNoRobot);
   tree.tick(now);
   if (Result<TeamIntents> result = board.get(kIntents)) intents = *result;
+  std::array<int, 2> leaving_on_side{};  // -y, +y
   for (const wm::RobotState& robot : robots) {
+    if (std::find(memory.leaving.begin(), memory.leaving.end(), robot.id) == memory.leaving.end()) continue;
+    int& slot = leaving_on_side[robot.position.y() < 0 ? 0 : 1];
+    intents.robots[robot.id] = leave_field_intent(s, leaving_spot(s.field, robot, slot++));
+  }
+  for (const wm::RobotState& robot : players) {
     if (robot.id < overrides.size() && overrides[robot.id]) {
       MotionIntent intent = run_skill(s, robot, *overrides[robot.id]);
       intent.role = "override";

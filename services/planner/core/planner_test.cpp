@@ -211,6 +211,32 @@ TEST_P(PlannerRefereeTest, StopTargetsKeepClearOfTheirDefenseArea) {
   expect_stop_properties(ticks(3));
 }
 
+TEST_P(PlannerRefereeTest, ACardSendsOneRobotOffToTheSubstitutionAreaAndThePlaysUseTheRest) {
+  script_.command(RefereeCommand::kForceStart);
+  script_.max_allowed_bots(10);  // 11 on the field
+  PlannerOutput out = ticks(3);
+  std::vector<std::uint32_t> substitutes;
+  for (const RoleInfo& r : out.roles) {
+    if (r.role == "substitute") substitutes.push_back(r.robot_id);
+  }
+  ASSERT_EQ(substitutes, std::vector<std::uint32_t>{3}) << "(-2, 2.5): nearest to its spot";
+  const RoleInfo* leaving = role(out, 3);
+  EXPECT_LT(leaving->target.x(), 0.0);
+  EXPECT_GT(leaving->target.x(), -1.0);
+  EXPECT_GT(leaving->target.y(), field().half_width() + kR) << "wholly beyond the touch line";
+  EXPECT_EQ(out.commands.size(), 11u) << "the leaving robot is still commanded";
+  EXPECT_NE(robot_with_role(out, "goalkeeper"), std::nullopt);
+
+  script_.command(RefereeCommand::kHalt);
+  out = tick();
+  for (const RobotCommand& c : out.commands) EXPECT_EQ(testing::speed(c), 0.0) << "robot " << c.id;
+
+  script_.command(RefereeCommand::kForceStart);
+  script_.max_allowed_bots(11);  // the card expired
+  out = ticks(2);
+  EXPECT_EQ(robot_with_role(out, "substitute"), std::nullopt);
+}
+
 TEST_P(PlannerRefereeTest, OurKickoffPositionsAndKickerStaysOffTheBall) {
   script_.command(script_.ours(Restart::kKickoff));
   const PlannerOutput out = ticks(5);

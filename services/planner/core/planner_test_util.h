@@ -139,6 +139,10 @@ class Script {
     referee_.blue_goalkeeper = side_.us == TeamColor::kBlue ? kOurKeeper : 4;
     referee_.yellow_goalkeeper = side_.us == TeamColor::kYellow ? kOurKeeper : 4;
   }
+  /// How many of our robots the referee allows on the field (cards).
+  void max_allowed_bots(std::uint32_t n) {
+    (side_.us == TeamColor::kBlue ? referee_.blue_max_allowed_bots : referee_.yellow_max_allowed_bots) = n;
+  }
   void can_place(bool can) {
     (side_.us == TeamColor::kBlue ? referee_.blue_can_place_ball : referee_.yellow_can_place_ball) = can;
   }

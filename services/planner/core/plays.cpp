@@ -59,6 +59,8 @@ double ball_clearance(const Situation& s) {
 double stop_speed(const Situation& s) { return s.config->stop_speed - s.config->stop_speed_margin; }
 double sign_or_one(double v) { return v < 0 ? -1.0 : 1.0; }
 
+}  // namespace
+
 MotionIntent base_intent(const Situation& s, std::string_view tactic) {
   MotionIntent intent;
   intent.active = true;
@@ -73,6 +75,8 @@ MotionIntent stop_intent(const Situation& s, std::string_view tactic) {
   intent.avoid_ball_radius = ball_clearance(s);
   return intent;
 }
+
+namespace {
 
 void begin(const Situation& s, TeamIntents& out, std::string_view play) {
   out.play = play;

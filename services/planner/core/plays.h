@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "libs/time/time.h"
 #include "services/planner/core/assignment.h"
@@ -65,6 +66,8 @@ struct PlayMemory {
   // Our restart's kicker once it may kick: it must not touch the ball again before another robot did (double
   // touch). Cleared by the planner when another robot touches the ball or play stops.
   std::optional<std::uint32_t> restart_kicker;
+  // Robots leaving the field for a card (substitution.h), ascending; sticky from tick to tick.
+  std::vector<std::uint32_t> leaving;
 };
 
 /// The intents of the whole team for one tick, indexed by robot id.
@@ -97,6 +100,10 @@ void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& o
 /// The goalkeeper in normal play: clears a slow ball at our defense area (true: no field player may go for
 /// it), else guards the goal.
 bool strategy_goalkeeper(const Situation& s, TeamIntents& out);
+/// An active intent at the robot's full speed, under `tactic`; and one within STOP's limits (speed, ball
+/// distance with our margin).
+MotionIntent base_intent(const Situation& s, std::string_view tactic);
+MotionIntent stop_intent(const Situation& s, std::string_view tactic);
 /// Writes robot `id`'s intent, its target moved out of the tick's zones.
 void write_intent(const Situation& s, TeamIntents& out, std::uint32_t id, const MotionIntent& intent);
 /// The attacker's shot: the shoot skill (it gets behind the ball, then kicks at the open part of the goal).

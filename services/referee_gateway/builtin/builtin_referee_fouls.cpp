@@ -273,8 +273,9 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_robot_count(cons
   const RobotCountRule& rule = profile_.rules.robot_count;
   if (!rule.enabled) return std::nullopt;
   for (const TeamColor team : {TeamColor::kYellow, TeamColor::kBlue}) {
-    const auto on_field = static_cast<std::uint32_t>(
-        std::count_if(seen.robots.begin(), seen.robots.end(), [&](const ObservedRobot& r) { return r.team == team; }));
+    const auto on_field = static_cast<std::uint32_t>(std::count_if(seen.robots.begin(), seen.robots.end(), [&](const ObservedRobot& r) {
+      return r.team == team && counts_towards_robot_limit(field_, r.position);
+    }));
     const std::uint32_t allowed = team_info(team).max_allowed_bots;
     std::optional<Timestamp>& since = too_many_since_[team == TeamColor::kYellow ? 0 : 1];
     if (on_field <= allowed) {

@@ -1289,6 +1289,17 @@ TEST(BuiltinReferee, MoreRobotsThanAllowedAfterTheGraceIsAFoul) {
   EXPECT_EQ(referee.state().next_command, Command::kDirectFreeBlue);
 }
 
+TEST(BuiltinReferee, ARobotWhollyBeyondTheTouchLineIsNotCountedOnTheField) {
+  for (const auto& [y, counted] : {std::pair{-3.08, true}, std::pair{-3.15, false}}) {
+    BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));  // 6 allowed, touch line y = -3
+    std::vector<ObservedRobot> seven;
+    for (std::uint32_t id = 0; id < 6; ++id) seven.push_back(yellow(id, {-3.0 + 0.4 * id, -2.0}));
+    seven.push_back(yellow(6, {-0.3, y}));
+    for (double t = 1; t <= 12; t += 0.5) referee.step(ball_at({0, 0.06 * (static_cast<int>(t) % 2)}, seven), at(t));
+    EXPECT_EQ(count_events(referee, GameEventType::kTooManyRobots), counted ? 1u : 0u) << y;
+  }
+}
+
 TEST(BuiltinReferee, EveryThirdFoulIsAYellowCardThatTakesARobotFor120SecondsOfPlay) {
   BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
   ASSERT_TRUE(referee.command(Command::kStop, at(0)));
