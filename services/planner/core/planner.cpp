@@ -23,6 +23,8 @@ namespace {
 constexpr double kDebugPathStep = 0.1;
 /// m beyond touching (robot radius + ball radius) at which a robot counts as touching the ball.
 constexpr double kTouchMargin = 0.02;
+/// m between a robot's side and their defense area in running play (wholly outside, with tracking error).
+constexpr double kRunningPlayDefenseAreaClearance = 0.03;
 
 namespace bt = ssl::bt;
 
@@ -352,8 +354,11 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
     s.zones.placement_corridor = placement_keep_out(*s.zones.ball, *s.placement_target, config.robot_radius,
                                                     config.ball_keep_away + config.keep_away_margin);
   }
-  s.zones.their_defense_margin =
-      config.defense_area_keep_away + config.robot_radius + config.keep_away_margin;
+  // The rule distance from their defense area holds in STOP and before a free kick's ball is in play; in
+  // running play our robots may come up to it (wholly outside: touching the ball partly inside is a foul).
+  s.zones.their_defense_margin = game.is_playing() ? config.robot_radius + kRunningPlayDefenseAreaClearance
+                                                   : config.defense_area_keep_away + config.robot_radius +
+                                                         config.keep_away_margin;
   s.zones.our_defense_margin = config.robot_radius + 0.05;
   s.zones.robots.clear();
   for (const wm::RobotState& robot : robots) {

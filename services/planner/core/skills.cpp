@@ -150,13 +150,14 @@ bool behind_ball_facing(const Situation& s, const wm::RobotState& robot, const V
          heading.dot(u) > std::cos(max_heading_error);
 }
 
-std::optional<double> shot_crossing(const Situation& s, double line_x) {
+std::optional<geom::Segment> shot_path(const Situation& s) {
   const Vec2& v = s.ball_velocity;
-  if (!s.ball_known || v.x() > -kShotMinSpeed || s.ball.x() <= line_x) return std::nullopt;
   const double goal_line = -s.field.half_length();
+  // Any direction counts (a ball rolling along the goal line too), as long as it is fast and comes our way.
+  if (!s.ball_known || v.norm() < kShotMinSpeed || v.x() > -1e-3 || s.ball.x() <= goal_line) return std::nullopt;
   const double y_at_goal = s.ball.y() + v.y() * (goal_line - s.ball.x()) / v.x();
   if (std::abs(y_at_goal) > s.field.size().goal_width / 2 + kShotMouthMargin) return std::nullopt;
-  return s.ball.y() + v.y() * (line_x - s.ball.x()) / v.x();
+  return geom::Segment{s.ball, Vec2(goal_line, y_at_goal)};
 }
 
 GoalOpening goal_opening(const Situation& s, const Vec2& from, std::optional<std::uint32_t> shooter) {
@@ -372,21 +373,48 @@ MotionIntent block(const Situation& s, const wm::RobotState& robot, const BlockP
   return intent;
 }
 
-MotionIntent defend_goal(const Situation& s, const wm::RobotState& /*robot*/, const DefendGoalParams& p) {
+MotionIntent defend_goal(const Situation& s, const wm::RobotState& robot, const DefendGoalParams& p) {
   MotionIntent intent = base(s, Skill::kDefendGoal);
   intent.avoid_our_defense_area = false;
   const double goal_line = -s.field.half_length();
-  const double x = p.touch_line ? goal_line + radius(s) * 0.6 : goal_line + radius(s) + 0.05;
-  // On the bisector of the angle the two posts make at the ball: the keeper covers both sides equally.
-  const auto [left_post, right_post] = s.field.our_goal_posts();
-  const Vec2 left = geom::normalized_or(left_post - s.ball, Vec2(-1, 0));
-  const Vec2 right = geom::normalized_or(right_post - s.ball, Vec2(-1, 0));
-  const Vec2 bisector = geom::normalized_or(left + right, Vec2(-1, 0));
-  double y = 0;
-  if (s.ball.x() > x + 1e-6 && bisector.x() < -1e-6) y = s.ball.y() + bisector.y() * (x - s.ball.x()) / bisector.x();
-  if (const std::optional<double> crossing = shot_crossing(s, x)) y = *crossing;  // intercept on its line
-  const double max_y = s.field.size().goal_width / 2 - radius(s);
-  intent.target = {x, std::clamp(y, -max_y, max_y)};
+  const double max_y = s.field.size().goal_width / 2 - radius(s) - 0.01;  // clear of the posts
+  if (p.touch_line) {
+    const double x = goal_line + radius(s) * 0.6;
+    intent.target = {x, std::clamp(s.ball.y(), -max_y, max_y)};
+    if (s.ball.x() > x + 1e-6) {
+      const auto [left_post, right_post] = s.field.our_goal_posts();
+      const Vec2 bisector = geom::normalized_or(Vec2((left_post - s.ball).normalized() + (right_post - s.ball).normalized()), Vec2(-1, 0));
+      if (bisector.x() < -1e-6) intent.target.y() = std::clamp(s.ball.y() + bisector.y() * (x - s.ball.x()) / bisector.x(), -max_y, max_y);
+    }
+    if (const std::optional<geom::Segment> path = shot_path(s); path && path->start.x() > x) {
+      const Vec2 d = path->direction();  // intercept where the shot crosses the keeper's line
+      intent.target.y() = std::clamp(path->start.y() + d.y() * (x - path->start.x()) / d.x(), -max_y, max_y);
+    }
+    intent.orientation = heading_to(intent.target, s.ball);
+    return intent;
+  }
+  // On the bisector of the angle the two posts make at the ball (both sides covered equally), kGuardDistance
+  // out from where it crosses the goal line: in front of the mouth for a ball ahead, near the line for a
+  // ball from a wide angle (one rolling along the line meets the keeper, not the gap behind it).
+  constexpr double kGuardMargin = 0.05;  // m beyond the robot's radius
+  const double guard = radius(s) + kGuardMargin;
+  intent.target = {goal_line + guard, std::clamp(s.ball.y(), -max_y, max_y)};
+  if (s.ball.x() > goal_line + 0.01) {
+    const auto [left_post, right_post] = s.field.our_goal_posts();
+    const Vec2 left = geom::normalized_or(left_post - s.ball, Vec2(-1, 0));
+    const Vec2 right = geom::normalized_or(right_post - s.ball, Vec2(-1, 0));
+    const Vec2 bisector = geom::normalized_or(left + right, Vec2(-1, 0));
+    if (bisector.x() < -1e-6) {
+      const Vec2 crossing = s.ball + bisector * ((goal_line - s.ball.x()) / bisector.x());
+      const Vec2 out = crossing - bisector * guard;
+      intent.target = {std::max(out.x(), goal_line + 0.02), std::clamp(out.y(), -max_y, max_y)};
+    }
+  }
+  // A shot: meet it on its path, at the point nearest to where the keeper is.
+  if (const std::optional<geom::Segment> path = shot_path(s)) {
+    const Vec2 meet = geom::project(robot.position, *path).point;
+    intent.target = {std::max(meet.x(), goal_line + 0.02), std::clamp(meet.y(), -max_y - 0.05, max_y + 0.05)};
+  }
   intent.orientation = heading_to(intent.target, s.ball);
   return intent;
 }

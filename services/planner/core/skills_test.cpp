@@ -187,6 +187,31 @@ TEST(Skills, DefendGoalStandsOnTheBisectorOfThePosts) {
   EXPECT_FALSE(intent.avoid_our_defense_area);
 }
 
+TEST(Skills, DefendGoalGuardsAWideBallFromNearTheGoalLine) {
+  // Ball near the corner (goal line x = -4.5): the keeper on the bisector close to the line, so that a ball
+  // played along the line meets it; a ball straight ahead keeps it 0.14 m out, in front of the mouth.
+  Scene wide({-4.3, -2.8});
+  const MotionIntent corner = defend_goal(wide.situation(), robot_at({-4.36, 0}), {});
+  EXPECT_LT(corner.target.x(), -4.5 + 0.05);
+  EXPECT_LT(corner.target.y(), 0.0) << "the ball's side";
+  Scene ahead({-2, 0});
+  EXPECT_NEAR(defend_goal(ahead.situation(), robot_at({-4.36, 0}), {}).target.x(), -4.5 + 0.14, 1e-9);
+}
+
+TEST(Skills, DefendGoalMeetsABallRollingAlongTheGoalLine) {
+  // 0.05 m in front of the line, rolling at 3.5 m/s along it into the mouth (crossing at y = -0.23): it
+  // passes behind a keeper 0.14 m out. The keeper steps onto its path.
+  const Vec2 ball(-4.45, -1.4);
+  const Vec2 velocity(-0.15, 3.5);
+  Scene along(ball, velocity);
+  const MotionIntent intent = defend_goal(along.situation(), robot_at({-4.36, -0.1}), {});
+  EXPECT_LT(std::abs(geom::cross(velocity.normalized(), Vec2(intent.target - ball))), 0.025) << "on the path (kept 2 cm off the line)";
+  EXPECT_GT(intent.target.y(), -0.5);
+  EXPECT_LT(intent.target.x(), -4.45);
+  Scene wide_of_goal({-4.45, -1.4}, {-0.3, 3.5});  // crosses the goal line before the mouth: no shot
+  EXPECT_GT(defend_goal(wide_of_goal.situation(), robot_at({-4.36, -0.1}), {}).target.y(), -0.45);
+}
+
 TEST(Skills, AnOverriddenRobotRunsItsSkillInsteadOfTheTree) {
   const testing::Side side{};
   testing::Script script(side);

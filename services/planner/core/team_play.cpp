@@ -19,7 +19,8 @@ constexpr double kTaken = 0.2;                 // m, receiver centre to ball: th
 constexpr double kLostSpeed = 0.3;             // m/s: a pass this slow far from its receiver is dead
 constexpr double kLostDistance = 0.8;          // m
 constexpr double kAttackerLead = 0.2;          // s the attacker race looks ahead along the ball's motion
-constexpr double kDefenderMisfit = 0.5;        // s added for a defender slot to a robot ahead of the ball
+constexpr double kDefenderMisfit = 0.5;
+constexpr double kPassAreaClearance = 0.5;     // m: passes are received at least this far from their area        // s added for a defender slot to a robot ahead of the ball
 constexpr std::uint32_t kRoleKeyBase = 100;    // StableAssigner keys of the styles' formations
 constexpr double kStrategyGap = 0.1;           // s without a strategy tick: play was stopped in between
 
@@ -238,7 +239,12 @@ std::vector<PassOption> rate_passes(const Situation& s, std::uint32_t passer, co
   std::vector<PassOption> options;
   for (const wm::RobotState& mate : s.robots) {
     if (mate.id == passer || (s.keeper && mate.id == *s.keeper)) continue;
-    if (auto option = rate_pass(s, mate.id, mate.position, params)) options.push_back(*option);
+    // A receiver next to their defense area takes the ball a step back from it: a ball it does not stop at
+    // once would roll into the area, where nobody of ours may play it.
+    Vec2 point = mate.position;
+    const double front = s.field.half_length() - s.field.size().penalty_area_depth - kPassAreaClearance;
+    if (s.field.in_their_defense_area(point, kPassAreaClearance)) point.x() = std::min(point.x(), front);
+    if (auto option = rate_pass(s, mate.id, point, params)) options.push_back(*option);
   }
   std::sort(options.begin(), options.end(), [](const PassOption& a, const PassOption& b) {
     return a.score != b.score ? a.score > b.score : a.receiver < b.receiver;

@@ -345,8 +345,9 @@ void BuiltinReferee::track_kick(const CleanObservation& seen) {
     kick_reference_ball_ = seen.ball;
   } else if ((*seen.ball - *kick_reference_ball_).norm() >= kInPlayDistance) {
     start_running();
-    // Double touch: the kicker of this restart may not touch the ball again before another robot did.
-    if (last_touch_ && executing_team_ && last_touch_->team == *executing_team_) {
+    // Double touch: the kicker of this restart may not touch the ball again before another robot did (a
+    // kickoff or free kick; a penalty's attacker may play the ball on).
+    if (!penalty_kicker_ && last_touch_ && executing_team_ && last_touch_->team == *executing_team_) {
       kicker_watch_ = KickerWatch{*last_touch_, *seen.ball};
     }
   }
@@ -936,9 +937,11 @@ std::optional<BuiltinReferee::Transition> BuiltinReferee::judge_defense_areas(co
              .location = offender->position,
              .value = depth_in(own_area, offender->position)},
             now, /*is_foul=*/false);
+      // STOP first: the ball goes to the penalty mark (placement_needed_for), then the penalty is prepared.
       const TeamColor kicker = opponent(team);
-      return Transition{.command = penalty(kicker),
-                        .next_command = Command::kNormalStart,
+      return Transition{.command = Command::kStop,
+                        .next_command = penalty(kicker),
+                        .next_is_automatic = true,
                         .reason = std::to_string(inside) + " " + std::string(to_string(team)) +
                                   " robots in their defense area: penalty " + std::string(to_string(kicker))};
     }

@@ -484,15 +484,20 @@ TEST(BuiltinReferee, TooManyDefendersInTheirAreaGiveThePenaltyToTheOtherTeam) {
   referee.step(ball_at({0, 0}, {blue(0, {4.3, 0.0}), blue(4, {3.45, 0.2})}), at(1));
   EXPECT_EQ(referee.state().command, Command::kForceStart) << "keeper inside, defender only partly inside";
   referee.step(ball_at({0, 0}, {blue(0, {4.3, 0.0}), blue(4, {3.7, 0.2}), blue(6, {3.6, -0.5})}), at(2));
-  EXPECT_EQ(referee.state().command, Command::kPreparePenaltyYellow);
-  EXPECT_EQ(referee.state().next_command, Command::kNormalStart);
+  EXPECT_EQ(referee.state().command, Command::kStop);
+  EXPECT_EQ(referee.state().next_command, Command::kPreparePenaltyYellow);
   const GameEvent* foul = last_event(referee);
   ASSERT_NE(foul, nullptr);
   EXPECT_EQ(foul->type, GameEventType::kDefenderInDefenseArea);
   EXPECT_EQ(foul->by_team, Team::kBlue);
   EXPECT_EQ(foul->by_bot, 4u) << "the deepest robot that is not the goalkeeper";
   EXPECT_NEAR(*foul->value, 0.2, 1e-9);
-  referee.step(ball_at({0, 0}), at(20));
+  // The ball goes to the mark 6 m from blue's goal (+4.5) first, then the penalty is prepared.
+  referee.step(ball_at({0, 0}), at(5));
+  EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow);
+  ASSERT_TRUE(referee.state().designated_position);
+  expect_near(*referee.state().designated_position, {-1.5, 0});
+  for (double t = 5.5; t <= 30; t += 0.5) referee.step(ball_at({-1.5, 0}), at(t));
   EXPECT_EQ(referee.state().command, Command::kPreparePenaltyYellow) << "strict_ai: operator's NORMAL_START";
 }
 
@@ -1132,6 +1137,20 @@ TEST(BuiltinReferee, TheKickerTouchingAgainFirstIsADoubleTouch) {
   EXPECT_EQ(touch->by_bot, 2u);
   expect_near(touch->location, {0.6, 0});
   EXPECT_EQ(referee.state().yellow.foul_counter, 1u);
+}
+
+TEST(BuiltinReferee, APenaltysAttackerMayPlayTheBallAgain) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  ASSERT_TRUE(referee.command(Command::kPreparePenaltyYellow, at(0)));
+  ASSERT_TRUE(referee.command(Command::kNormalStart, at(1)));
+  // Yellow attacks +x from the mark at -1.5: pushed on, released, then touched again by the same robot.
+  referee.step(ball_at({-1.5, 0}, {yellow(2, {-1.61, 0})}), at(1.5));
+  referee.step(ball_at({-1.4, 0}, {yellow(2, {-1.61, 0})}), at(1.6));
+  ASSERT_TRUE(referee.game_running());
+  referee.step(ball_at({0.5, 0}, {yellow(2, {-1.0, 0})}), at(2.5));
+  referee.step(ball_at({1.0, 0}, {yellow(2, {0.89, 0})}), at(3.5));
+  EXPECT_EQ(referee.state().command, Command::kNormalStart);
+  EXPECT_EQ(count_events(referee, GameEventType::kAttackerDoubleTouchedBall), 0u);
 }
 
 TEST(BuiltinReferee, AnotherRobotsTouchClearsTheKicker) {

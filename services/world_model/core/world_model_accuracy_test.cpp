@@ -209,7 +209,7 @@ TEST(WorldModelAccuracy, RobotPositionAndVelocityRmsAtLeastHalfOfRawUnderRealist
   // never rests (every robot turns and changes speed all the time, against walls and each other), and
   // without its commands no kinematic estimator gets to 50 % here: the best causal polynomial fit over any
   // window (degree 1-4, chosen with hindsight) reaches 26 %. A match's motion is measured in tests/simulated/
-  // world_model_match_accuracy_test (opponents >= 50 % lower there).
+  // world_model_match_accuracy_test (opponents 44-56 % lower there).
   EXPECT_LE(filt_pos.value(), 0.5 * raw_pos.value());
   EXPECT_LE(enemy_filt.value(), 0.65 * enemy_raw.value());
   EXPECT_GT(enemy_reduction, reference.reduction_pct + 5);
