@@ -6,7 +6,9 @@
 // break to 10 s so that the whole match runs in CI; everything else is the profile as shipped.
 //
 // The match is played once (the suite's set-up) and each test reads one property of it:
-//  * every goal is followed by its kickoff being taken (the ball in play) within 15 s of simulated time;
+//  * every goal is followed by its kickoff being taken (the ball in play) within 15 s of simulated time
+//    (when nobody scored in the first 60 s of the match, one goal is scripted: the ball put rolling over a
+//    goal line, so that this is always exercised);
 //  * the side swap: blue defends the other goal in the second half, each world model's team frame follows
 //    the referee's side, each keeper stands in front of the goal its team defends, and both teams stand in
 //    their new halves for the second half's kickoff (its NORMAL_START came because they were in position);
@@ -59,6 +61,7 @@ bool verbose() {
 constexpr double kHalfDuration = 120;  // s of playing time
 constexpr double kHalfTime = 10;       // s
 constexpr double kKickoffWithin = 15;  // s from a goal to its kickoff in play
+constexpr double kScriptedGoalAfter = 60;  // s of the match without a goal: one is scripted
 constexpr std::uint32_t kKeeper = 0;   // both teams' goalkeeper id (the referee's default)
 
 bool is_first_half(Stage stage) { return stage == Stage::kNormalFirstHalfPre || stage == Stage::kNormalFirstHalf; }
@@ -87,6 +90,7 @@ struct MatchRecord {
   std::map<std::pair<TeamColor, bool>, std::pair<double, int>> keeper_x;  // (team, second half) -> sum, n
   // The second half's kickoff: how its NORMAL_START came.
   std::string second_half_kickoff_start;
+  std::optional<double> scripted_goal;  // s: when the ball was put over a goal line (nobody had scored)
   std::uint64_t placements = 0;
 };
 
@@ -122,6 +126,17 @@ const MatchRecord& played_match() {
           if (!out.goals.empty() && !out.goals.back().kickoff_in_play_after && !out.goals.back().half_ended_first &&
               state.command == Command::kNormalStart && referee.game_running()) {
             out.goals.back().kickoff_in_play_after = t - out.goals.back().at;
+          }
+          // Keepers save most shots: when nobody scored after kScriptedGoalAfter s, the ball is put rolling
+          // over a goal line in the middle of the mouth, so that a goal and its kickoff are always exercised.
+          if (out.goals.empty() && !out.scripted_goal && t > kScriptedGoalAfter && referee.game_running() &&
+              state.stage == Stage::kNormalFirstHalf) {
+            const double line = 0.5 * sim::FieldGeometry::division_b().field_length;
+            out.scripted_goal = t;
+            EXPECT_TRUE(match.apply({.ball = sim::BallTeleport{
+                                         .x = line - 0.03, .y = 0.0, .z = 0.0215, .vx = 1.0, .vy = 0.0,
+                                         .teleport_safely = true, .roll = true}}))
+                << "scripted goal";
           }
           if (!out.goals.empty() && !out.goals.back().kickoff_in_play_after && out.goals.back().stage != state.stage) {
             out.goals.back().half_ended_first = true;
@@ -174,6 +189,7 @@ const MatchRecord& played_match() {
                 out.duration, out.goals.size(), static_cast<unsigned long long>(out.placements),
                 out.no_progress[Stage::kNormalFirstHalf], out.no_progress[Stage::kNormalSecondHalf],
                 std::string(to_string(final_state.stage)).c_str());
+    if (out.scripted_goal) std::printf("nobody had scored: a goal was scripted at %.1f s\n", *out.scripted_goal);
     std::printf("%s", sslctl::to_text(report.report()).c_str());
     for (const MatchRecord::Goal& goal : out.goals) {
       std::printf("  goal at %6.1f s for %s, kickoff in play %s\n", goal.at,

@@ -1074,8 +1074,14 @@ struct LastTouch {
 
 /// Where a ball past a goal line went: +1 into their goal, -1 into ours, 0 still in play or out elsewhere.
 int goal_of(const LockstepMatch& m) {
+  // As the rules judge it: the whole ball over the goal line, between the posts and inside the goal (a ball
+  // that rolled past a post round the back of the goal is no goal).
   const Vec2& ball = m.truth().ball;
-  if (std::abs(ball.x()) <= m.half_length() || std::abs(ball.y()) >= m.field().goal_width / 2) return 0;
+  const double beyond = std::abs(ball.x()) - m.half_length();
+  if (beyond <= kBallRadius || beyond > m.field().goal_depth ||
+      std::abs(ball.y()) >= m.field().goal_width / 2 - kBallRadius) {
+    return 0;
+  }
   return ball.x() > 0 ? 1 : -1;
 }
 

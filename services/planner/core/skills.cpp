@@ -25,6 +25,10 @@ constexpr double kIncomingSpeed = 0.5;
 constexpr double kCushionDistance = 0.4;
 /// s the marker aims ahead of where its opponent is (the latency it reacts with).
 constexpr double kMarkLookahead = 0.05;
+/// m inside the post (beyond the ball's width) a shot at a gap beside the post aims.
+constexpr double kPostAim = 0.06;
+/// m between a robot touching the ball and their defense area (touching it partly inside is a foul).
+constexpr double kAreaTouchClearance = 0.02;
 /// m: a slow ball this close to the receiving point is fetched by the receiver.
 constexpr double kTakeNearPoint = 1.0;
 
@@ -80,7 +84,17 @@ MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const V
   MotionIntent intent = base(s, skill);
   if (behind_ball_facing(s, robot, u, 0.1)) {
     kick_through(s, u, speed, intent);
-    intent.avoid_their_defense_area = false;  // the drive-through point may lie just inside; the kick is before
+    // Touched from wholly outside their defense area, the ball may be driven through towards it; the robot
+    // stops before it would stand wholly inside (a foul), the kick fires at the touch. Otherwise the zone
+    // keeps the robot off the ball: touching it partly inside is a foul.
+    const Vec2 contact = s.ball - u * dribbler_distance(s);
+    if (!s.field.in_their_defense_area(contact, radius(s) + kAreaTouchClearance)) {
+      intent.avoid_their_defense_area = false;
+      const double deepest = radius(s) - kAreaTouchClearance;  // centre depth: still partly outside
+      double through = (intent.target - s.ball).norm();
+      while (through > 0 && s.field.in_their_defense_area(s.ball + u * through, -deepest)) through -= 0.01;
+      intent.target = s.ball + u * std::max(through, 0.0);
+    }
   } else {
     approach_ball(s, robot, u, intent);
   }
@@ -186,7 +200,15 @@ GoalOpening goal_opening(const Situation& s, const Vec2& from, std::optional<std
   }
   if (start < high) consider(high);
   if (best_width <= 0) return {0, goal};
-  const double aim = best_from + best_width / 2;
+  // Against a post the shot goes kPostAim inside it, as far from the robot bounding the gap as it can: the
+  // keeper has the longest way. A gap between two robots (or the whole mouth) is shot through its middle.
+  const double reach = std::max(goal.x() - from.x(), 1e-6);
+  const double post_margin = std::min(std::atan(kPostAim / reach), best_width / 2);
+  const bool at_low_post = best_from <= low + 1e-12;
+  const bool at_high_post = best_from + best_width >= high - 1e-12;
+  double aim = best_from + best_width / 2;
+  if (at_low_post && !at_high_post) aim = best_from + post_margin;
+  if (at_high_post && !at_low_post) aim = best_from + best_width - post_margin;
   return {best_width, {goal.x(), from.y() + std::tan(aim) * (goal.x() - from.x())}};
 }
 

@@ -111,14 +111,21 @@ TEST(Skills, TurnWithBallHoldsThePlaceAndLimitsTheTurnRate) {
   EXPECT_TRUE(intent.dribble);
 }
 
-TEST(Skills, ShootAimsAtTheWidestOpenPartOfTheGoal) {
+TEST(Skills, ShootAimsInsideThePostOfTheWidestOpenPartOfTheGoal) {
   // Division B goal: 1 m wide at x = 4.5. From a ball at (2.5, 0) an opponent at (3.5, 0.25) hides the goal
-  // from y = +0.28 to the +y post: the open part is y in [-0.46, +0.28], its middle (by angle) y = -0.088.
+  // from y = +0.28 to the +y post: the open part is y in [-0.457, +0.28] (a ball's width off the post). It
+  // lies against the -y post: the shot goes 0.06 m inside that edge, y = -0.394, furthest from the opponent.
   Scene scene({2.5, 0});
   scene.enemies = {enemy_at({3.5, 0.25}, 1)};
   const Vec2 target = shot_target(scene.situation());
   EXPECT_NEAR(target.x(), 4.5, 1e-9);
-  EXPECT_NEAR(target.y(), -0.088, 0.001);
+  EXPECT_NEAR(target.y(), -0.394, 0.001);
+  // A gap between two opponents (both posts hidden): its middle, y = -0.088 by angle between them.
+  Scene between({2.5, 0});
+  between.enemies = {enemy_at({3.5, 0.25}, 1), enemy_at({4.45, -0.45}, 2)};
+  const Vec2 middle = shot_target(between.situation());
+  EXPECT_GT(middle.y(), -0.35);
+  EXPECT_LT(middle.y(), 0.2);
   // An empty goal: the middle.
   Scene empty({2.5, 0});
   EXPECT_NEAR(shot_target(empty.situation()).y(), 0.0, 1e-9);
