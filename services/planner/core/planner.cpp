@@ -313,11 +313,12 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
     if (robot.id == game.our_goalkeeper()) keeper_id = robot.id;
   }
   memory.leaving = choose_leaving(robots, game.our_max_allowed_bots(), keeper_id, memory.leaving, s.field);
+  const auto leaving = [&](std::uint32_t id) {
+    return std::find(memory.leaving.begin(), memory.leaving.end(), id) != memory.leaving.end();
+  };
   players.clear();
   for (const wm::RobotState& robot : robots) {
-    if (std::find(memory.leaving.begin(), memory.leaving.end(), robot.id) == memory.leaving.end()) {
-      players.push_back(robot);
-    }
+    if (!leaving(robot.id)) players.push_back(robot);
   }
   s.game = &game;
   s.ball_known = ball_known;
@@ -343,10 +344,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   s.possession = world.possession;
   s.possessing_robot = world.possessing_robot;
   s.now = now.to_seconds();
-  s.keeper.reset();
-  for (const wm::RobotState& robot : players) {
-    if (robot.id == game.our_goalkeeper()) s.keeper = robot.id;
-  }
+  s.keeper = keeper_id && !leaving(*keeper_id) ? keeper_id : std::nullopt;
   s.zones.field = s.field;
   s.zones.ball = ball_known ? std::optional<Vec2>(ball) : std::nullopt;
   s.zones.placement_corridor.reset();
@@ -379,7 +377,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   if (Result<TeamIntents> result = board.get(kIntents)) intents = *result;
   std::array<int, 2> leaving_on_side{};  // -y, +y
   for (const wm::RobotState& robot : robots) {
-    if (std::find(memory.leaving.begin(), memory.leaving.end(), robot.id) == memory.leaving.end()) continue;
+    if (!leaving(robot.id)) continue;
     int& slot = leaving_on_side[robot.position.y() < 0 ? 0 : 1];
     intents.robots[robot.id] = leave_field_intent(s, leaving_spot(s.field, robot, slot++));
   }

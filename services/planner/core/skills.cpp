@@ -400,41 +400,37 @@ MotionIntent defend_goal(const Situation& s, const wm::RobotState& robot, const 
   intent.avoid_our_defense_area = false;
   const double goal_line = -s.field.half_length();
   const double max_y = s.field.size().goal_width / 2 - radius(s) - 0.01;  // clear of the posts
+  // The bisector of the angle the two posts make at the ball: a keeper on it covers both sides equally.
+  const auto [left_post, right_post] = s.field.our_goal_posts();
+  const Vec2 bisector = geom::normalized_or(Vec2(geom::normalized_or(left_post - s.ball, Vec2(-1, 0)) +
+                                                 geom::normalized_or(right_post - s.ball, Vec2(-1, 0))),
+                                            Vec2(-1, 0));
+  const std::optional<geom::Segment> shot = shot_path(s);
   if (p.touch_line) {
+    // On the line x, where the bisector (or a shot) crosses it.
     const double x = goal_line + radius(s) * 0.6;
-    intent.target = {x, std::clamp(s.ball.y(), -max_y, max_y)};
-    if (s.ball.x() > x + 1e-6) {
-      const auto [left_post, right_post] = s.field.our_goal_posts();
-      const Vec2 bisector = geom::normalized_or(Vec2((left_post - s.ball).normalized() + (right_post - s.ball).normalized()), Vec2(-1, 0));
-      if (bisector.x() < -1e-6) intent.target.y() = std::clamp(s.ball.y() + bisector.y() * (x - s.ball.x()) / bisector.x(), -max_y, max_y);
-    }
-    if (const std::optional<geom::Segment> path = shot_path(s); path && path->start.x() > x) {
-      const Vec2 d = path->direction();  // intercept where the shot crosses the keeper's line
-      intent.target.y() = std::clamp(path->start.y() + d.y() * (x - path->start.x()) / d.x(), -max_y, max_y);
-    }
+    const auto y_at = [x](const Vec2& from, const Vec2& d) { return from.y() + d.y() * (x - from.x()) / d.x(); };
+    double y = s.ball.y();
+    if (s.ball.x() > x + 1e-6 && bisector.x() < -1e-6) y = y_at(s.ball, bisector);
+    if (shot && shot->start.x() > x) y = y_at(shot->start, shot->direction());
+    intent.target = {x, std::clamp(y, -max_y, max_y)};
     intent.orientation = heading_to(intent.target, s.ball);
     return intent;
   }
-  // On the bisector of the angle the two posts make at the ball (both sides covered equally), kGuardDistance
-  // out from where it crosses the goal line: in front of the mouth for a ball ahead, near the line for a
-  // ball from a wide angle (one rolling along the line meets the keeper, not the gap behind it).
+  // On the bisector, `guard` out from where it crosses the goal line: in front of the mouth for a ball ahead,
+  // near the line for a ball from a wide angle (one rolling along the line meets the keeper, not the gap
+  // behind it).
   constexpr double kGuardMargin = 0.05;  // m beyond the robot's radius
   const double guard = radius(s) + kGuardMargin;
   intent.target = {goal_line + guard, std::clamp(s.ball.y(), -max_y, max_y)};
-  if (s.ball.x() > goal_line + 0.01) {
-    const auto [left_post, right_post] = s.field.our_goal_posts();
-    const Vec2 left = geom::normalized_or(left_post - s.ball, Vec2(-1, 0));
-    const Vec2 right = geom::normalized_or(right_post - s.ball, Vec2(-1, 0));
-    const Vec2 bisector = geom::normalized_or(left + right, Vec2(-1, 0));
-    if (bisector.x() < -1e-6) {
-      const Vec2 crossing = s.ball + bisector * ((goal_line - s.ball.x()) / bisector.x());
-      const Vec2 out = crossing - bisector * guard;
-      intent.target = {std::max(out.x(), goal_line + 0.02), std::clamp(out.y(), -max_y, max_y)};
-    }
+  if (s.ball.x() > goal_line + 0.01 && bisector.x() < -1e-6) {
+    const Vec2 crossing = s.ball + bisector * ((goal_line - s.ball.x()) / bisector.x());
+    const Vec2 out = crossing - bisector * guard;
+    intent.target = {std::max(out.x(), goal_line + 0.02), std::clamp(out.y(), -max_y, max_y)};
   }
   // A shot: meet it on its path, at the point nearest to where the keeper is.
-  if (const std::optional<geom::Segment> path = shot_path(s)) {
-    const Vec2 meet = geom::project(robot.position, *path).point;
+  if (shot) {
+    const Vec2 meet = geom::project(robot.position, *shot).point;
     intent.target = {std::max(meet.x(), goal_line + 0.02), std::clamp(meet.y(), -max_y - 0.05, max_y + 0.05)};
   }
   intent.orientation = heading_to(intent.target, s.ball);

@@ -35,10 +35,10 @@ std::vector<std::uint32_t> choose_leaving(std::span<const wm::RobotState> robots
   std::vector<Candidate> candidates;
   candidates.reserve(robots.size());
   for (const wm::RobotState& robot : robots) {
-    const double to_spot = (robot.position - leaving_spot(field, robot, 0)).norm();
     if (contains(leaving_before, robot.id)) {
       candidates.push_back({0, -std::abs(robot.position.x()), robot.id});
     } else {
+      const double to_spot = (robot.position - leaving_spot(field, robot, 0)).norm();
       candidates.push_back({keeper && robot.id == *keeper ? 2 : 1, to_spot, robot.id});
     }
   }
@@ -55,8 +55,8 @@ std::vector<std::uint32_t> choose_leaving(std::span<const wm::RobotState> robots
 
 MotionIntent leave_field_intent(const Situation& s, const Vec2& spot) {
   const wm::GameState& game = *s.game;
-  const bool keep_distance = game.is_stopped() || game.must_keep_distance_from_ball();
-  MotionIntent intent = keep_distance ? stop_intent(s, "leave_field") : base_intent(s, "leave_field");
+  MotionIntent intent =
+      game.must_keep_distance_from_ball() ? stop_intent(s, "leave_field") : base_intent(s, "leave_field");
   intent.target = spot;
   intent.orientation = spot.y() < 0 ? M_PI / 2 : -M_PI / 2;  // facing the field
   intent.may_enter_boundary = true;

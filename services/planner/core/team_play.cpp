@@ -19,8 +19,8 @@ constexpr double kTaken = 0.2;                 // m, receiver centre to ball: th
 constexpr double kLostSpeed = 0.3;             // m/s: a pass this slow far from its receiver is dead
 constexpr double kLostDistance = 0.8;          // m
 constexpr double kAttackerLead = 0.2;          // s the attacker race looks ahead along the ball's motion
-constexpr double kDefenderMisfit = 0.5;
-constexpr double kPassAreaClearance = 0.5;     // m: passes are received at least this far from their area        // s added for a defender slot to a robot ahead of the ball
+constexpr double kDefenderMisfit = 0.5;        // s added for a defender slot to a robot ahead of the ball
+constexpr double kPassAreaClearance = 0.5;     // m: passes are received at least this far from their area
 constexpr std::uint32_t kRoleKeyBase = 100;    // StableAssigner keys of the styles' formations
 constexpr double kStrategyGap = 0.1;           // s without a strategy tick: play was stopped in between
 
