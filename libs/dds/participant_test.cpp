@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <set>
+#include <string>
 
 namespace ssl::dds {
 namespace {
@@ -128,6 +130,46 @@ TEST(ParticipantTest, LateJoinerGetsTheLastRefereeStateOnly) {
   const auto samples = reader->take();
   ASSERT_EQ(samples.size(), 1u);
   EXPECT_EQ(samples[0].data.command_counter(), 3u);
+}
+
+// Fast DDS's default resource limits hold 10 instances of a keyed topic; the profiles raise them so that
+// every robot id (0-15) and every service of an 11 v 11 match with its tools keeps its own instance.
+TEST(ParticipantTest, KeyedTopicsTakeEveryRobotIdAndEveryServiceInstance) {
+  auto writer_side = make_participant(116);
+  auto reader_side = make_participant(116);
+  auto feedback_writer = writer_side.make_writer(topics::kRobotFeedback, TeamColor::kBlue);
+  auto feedback_reader = reader_side.make_reader(topics::kRobotFeedback, TeamColor::kBlue);
+  auto health_writer = writer_side.make_writer(topics::kSystemHealth);
+  auto health_reader = reader_side.make_reader(topics::kSystemHealth);
+  ASSERT_TRUE(feedback_writer && feedback_reader && health_writer && health_reader);
+  ASSERT_TRUE(feedback_writer->wait_for_match(1, kMatchTimeout));
+  ASSERT_TRUE(feedback_reader->wait_for_match(1, kMatchTimeout));
+  ASSERT_TRUE(health_writer->wait_for_match(1, kMatchTimeout));
+  ASSERT_TRUE(health_reader->wait_for_match(1, kMatchTimeout));
+
+  constexpr std::uint32_t kRobotIds = 16;
+  constexpr int kServices = 40;
+  for (std::uint32_t id = 0; id < kRobotIds; ++id) {
+    idl::robot::RobotFeedback feedback;
+    feedback.robot_id(id);
+    EXPECT_TRUE(feedback_writer->write(feedback).ok()) << "robot " << id;
+  }
+  for (int i = 0; i < kServices; ++i) {
+    idl::system::Health report;
+    report.service("service/" + std::to_string(i));
+    EXPECT_TRUE(health_writer->write(report).ok()) << "service " << i;
+  }
+
+  std::set<std::uint32_t> robots;
+  std::set<std::string> services;
+  const auto deadline = std::chrono::steady_clock::now() + kMatchTimeout;
+  while ((robots.size() < kRobotIds || services.size() < kServices) && std::chrono::steady_clock::now() < deadline) {
+    feedback_reader->wait_for_data(std::chrono::milliseconds(100));
+    for (const auto& sample : feedback_reader->take()) robots.insert(sample.data.robot_id());
+    for (const auto& sample : health_reader->take()) services.insert(sample.data.service());
+  }
+  EXPECT_EQ(robots.size(), kRobotIds);
+  EXPECT_EQ(services.size(), static_cast<std::size_t>(kServices));
 }
 
 TEST(ParticipantTest, AllTopicsAreListedWithTypesAndProfiles) {
