@@ -25,9 +25,9 @@ constexpr double kDefenseZoneBehindGoal = 1.0;  // m
 
 /// The nearest point on `zone`'s boundary, leaving through the faces towards the field (not the goal line).
 Vec2 exit_towards_field(const geom::Rectangle& zone, const Vec2& p, bool opens_towards_positive_x) {
-  const double to_front = opens_towards_positive_x ? zone.max().x() - p.x() : p.x() - zone.min().x();
-  const double to_side = zone.max().y() - std::abs(p.y());
-  if (to_front <= to_side) return {opens_towards_positive_x ? zone.max().x() : zone.min().x(), p.y()};
+  if (zone_exit_normal(zone, p, opens_towards_positive_x).x() != 0) {
+    return {opens_towards_positive_x ? zone.max().x() : zone.min().x(), p.y()};
+  }
   return {p.x(), p.y() >= 0 ? zone.max().y() : zone.min().y()};
 }
 
@@ -66,6 +66,13 @@ std::optional<Vec2> detour(const Vec2& p, const Vec2& dir, double length, const 
 }
 
 }  // namespace
+
+Vec2 zone_exit_normal(const geom::Rectangle& zone, const Vec2& p, bool opens_towards_positive_x) {
+  const double to_front = opens_towards_positive_x ? zone.max().x() - p.x() : p.x() - zone.min().x();
+  const double to_side = zone.max().y() - std::abs(p.y());
+  if (to_front <= to_side) return {opens_towards_positive_x ? 1.0 : -1.0, 0.0};
+  return {0.0, p.y() >= 0 ? 1.0 : -1.0};
+}
 
 geom::Rectangle our_defense_zone(const Zones& zones) {
   return defense_area_keep_out(zones.field.size(), -1, zones.our_defense_margin, kDefenseZoneBehindGoal);

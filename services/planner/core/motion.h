@@ -77,6 +77,9 @@ Vec2 project_out(const Vec2& p, const MotionIntent& intent, const Zones& zones);
 /// Where robot centres keep out of our (-x) / their (+x) defense area: grown by the zones' margin towards
 /// the field and sideways, and reaching behind the goal line into the goal and up to the wall.
 geom::Rectangle our_defense_zone(const Zones& zones);
+/// The way out of a defense zone (`zone` centred on y = 0, open towards +x or -x) for a centre `p` in it or
+/// on its edge: the unit normal of the nearer of its front and the side on p's side (never behind the goal).
+Vec2 zone_exit_normal(const geom::Rectangle& zone, const Vec2& p, bool opens_towards_positive_x);
 geom::Rectangle their_defense_zone(const Zones& zones);
 /// Where the intent lets a robot centre go: the field and field_margin beyond its lines, or, for a robot
 /// that may enter the boundary, up to wall_margin from the walls.

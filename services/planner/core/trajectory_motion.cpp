@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "libs/geometry/closest_point.h"
 #include "libs/geometry/contains.h"
 
 namespace ssl::planner {
@@ -16,6 +17,7 @@ constexpr int kFreeTargetPasses = 3;            // moves of the target out of ro
 constexpr double kFreeTargetClearance = 0.01;
 constexpr double kInsideZone = 0.005;     // m a robot centre may be inside a zone before it leaves it first
 constexpr double kFollowDistance = 1.0;   // m from a moving target within which a robot moves with it
+constexpr double kOnZoneEdge = 1e-6;      // m from a zone's edge that counts as on it (the zone guard)
 constexpr double kExitOvershoot = 0.05;   // m beyond a zone's edge that a robot leaving it heads for
 
 }  // namespace
@@ -142,6 +144,31 @@ Vec2 TrajectoryMotionPlanner::guarded(const wm::RobotState& robot, Vec2 velocity
   return velocity;
 }
 
+Vec2 TrajectoryMotionPlanner::zone_guarded(const wm::RobotState& robot, Vec2 velocity, const MotionIntent& intent,
+                                           const Zones& zones) const {
+  const double a = params_.guard_deceleration;
+  const double tau = params_.guard_latency;
+  const auto keep_out = [&](const geom::Rectangle& zone, bool opens_towards_positive_x) {
+    const Vec2& p = robot.position;
+    const Vec2 offset = geom::closest_point(zone, p) - p;
+    const double distance = zone.contains(p) ? 0.0 : offset.norm();
+    if (distance < kOnZoneEdge) {
+      // Inside or on the edge: nothing deeper than standing still.
+      const Vec2 out = zone_exit_normal(zone, p, opens_towards_positive_x);
+      const double deeper = -velocity.dot(out);
+      if (deeper > 0) velocity += deeper * out;
+      return;
+    }
+    const Vec2 toward = offset / distance;
+    const double approach = velocity.dot(toward);
+    const double allowed = a * (std::sqrt(tau * tau + 2 * distance / a) - tau);
+    if (approach > allowed) velocity -= (approach - allowed) * toward;
+  };
+  if (intent.avoid_their_defense_area) keep_out(their_defense_zone(zones), false);
+  if (intent.avoid_our_defense_area) keep_out(our_defense_zone(zones), true);
+  return velocity;
+}
+
 void TrajectoryMotionPlanner::describe(std::uint32_t id, double step, std::vector<Vec2>& path,
                                        std::optional<double>& tracking_error) const {
   path.clear();
@@ -218,7 +245,7 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
     if (velocity.norm() > limits.max_speed) velocity *= limits.max_speed / velocity.norm();
   }
   if ((target - robot.position).norm() < kArrived && velocity.norm() < 0.05) velocity = Vec2::Zero();
-  velocity = guarded(robot, velocity, zones);
+  velocity = guarded(robot, zone_guarded(robot, velocity, intent, zones), zones);
 
   const Trajectory1D turn =
       plan_rotation(robot.orientation, memory.angular, intent.orientation,

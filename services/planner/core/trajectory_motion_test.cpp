@@ -75,5 +75,49 @@ TEST(TrajectoryMotion, HaltAndInactiveIntentsStopAtOnce) {
   EXPECT_EQ(command.angular, 0.0);
 }
 
+TEST(TrajectoryMotion, ARobotFollowingATargetIntoOurDefenseAreaStopsAtTheZonesEdge) {
+  // A marker keeps up with an opponent running into our defense area (division A: its front at x = -4.2).
+  // The follow mode drives with the target's velocity; the zone still holds the robot's centre outside.
+  TrajectoryMotionPlanner motion(MotionLimits{});
+  Zones zones;
+  zones.our_defense_margin = 0.14;
+  const double edge = our_defense_zone(zones).max().x();
+  wm::RobotState robot = robot_at({-3.7, 0.3});
+  Vec2 sent = Vec2::Zero();
+  Vec2 opponent(-3.8, 0.3);
+  const Vec2 opponent_velocity(-1.5, 0);
+  double deepest = robot.position.x();
+  for (int tick = 0; tick < 150; ++tick) {
+    zones.robots = {{.id = 1, .ours = true, .position = robot.position, .velocity = sent}};
+    MotionIntent intent = go_to(opponent + Vec2(0.3, 0));
+    intent.target_velocity = opponent_velocity;
+    motion.begin_tick();
+    motion.sent(1, sent, 0);
+    sent = to_team(motion.plan(robot, intent, zones, 0.01), robot.orientation);
+    robot.position += sent * 0.01;
+    robot.velocity = sent;
+    opponent += opponent_velocity * 0.01;
+    deepest = std::min(deepest, robot.position.x());
+  }
+  EXPECT_GE(deepest, edge - 0.01) << "the robot went " << edge - deepest << " m into the zone";
+  EXPECT_LT(deepest, edge + 0.1) << "it kept up with the target as far as the zone";
+}
+
+TEST(TrajectoryMotion, ARobotInsideAZoneNeverDrivesDeeper) {
+  // Pushed 4 cm into our zone while driving into it at 0.8 m/s, towards a target beyond the area: the
+  // command has no component deeper into the zone, so the robot leaves it.
+  TrajectoryMotionPlanner motion(MotionLimits{});
+  Zones zones;
+  zones.our_defense_margin = 0.14;
+  const double edge = our_defense_zone(zones).max().x();
+  wm::RobotState robot = robot_at({edge - 0.04, -1.0});
+  robot.velocity = Vec2(-0.8, 0.1);
+  zones.robots = {{.id = 1, .ours = true, .position = robot.position, .velocity = robot.velocity}};
+  motion.begin_tick();
+  motion.sent(1, robot.velocity, 0);
+  const Vec2 command = to_team(motion.plan(robot, go_to({-5.5, -2.5}), zones, 0.01), robot.orientation);
+  EXPECT_GE(command.x(), 0.0);
+}
+
 }  // namespace
 }  // namespace ssl::planner
