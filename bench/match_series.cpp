@@ -74,16 +74,11 @@ ssl::sslctl::PlayAccount::Intent intent_of(const std::string& skill) {
 
 /// One match, in this (child) process: its report as JSON, plus which colour strategy A played.
 std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
-  auto profile = ssl::referee::load_referee_profile("strict_ai");
+  auto profile = ssl::planner::testing::unattended_strict_ai(half);
   if (!profile) {
     std::fprintf(stderr, "match_series: %s\n", profile.error().message.c_str());
     std::exit(1);
   }
-  profile->game.half_duration = half;
-  profile->game.half_time = 10;
-  profile->game.auto_continue = true;
-  profile->game.early_end_goals = 0;
-  profile->game.extra_time.enabled = false;
   const bool a_is_blue = seed % 2 == 0;
   const Strategy a = *strategy_named(pairing.a);
   const Strategy b = *strategy_named(pairing.b);

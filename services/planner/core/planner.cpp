@@ -23,6 +23,8 @@ namespace {
 constexpr double kDebugPathStep = 0.1;
 /// m beyond touching (robot radius + ball radius) at which a robot counts as touching the ball.
 constexpr double kTouchMargin = 0.02;
+/// m between our restart's kicker and the ball (edge to edge) until another robot touched the ball.
+constexpr double kRestartKickerBallClearance = 0.05;
 /// m between a robot's side and their defense area in running play (wholly outside, with tracking error).
 constexpr double kRunningPlayDefenseAreaClearance = 0.03;
 
@@ -375,6 +377,13 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   (void)board.set(kAttacker, kNoRobot);
   tree.tick(now);
   if (Result<TeamIntents> result = board.get(kIntents)) intents = *result;
+  // Once the ball is in play our restart's kicker keeps off it until another robot touched it (double
+  // touch), whatever the strategy gave it to do: right after a soft kick it is still behind the ball.
+  if (s.restart_kicker && game.is_playing() && *s.restart_kicker < intents.robots.size()) {
+    MotionIntent& kicker = intents.robots[*s.restart_kicker];
+    kicker.avoid_ball_radius = std::max(
+        kicker.avoid_ball_radius, config.robot_radius + s.field.size().ball_radius + kRestartKickerBallClearance);
+  }
   std::array<int, 2> leaving_on_side{};  // -y, +y
   for (const wm::RobotState& robot : robots) {
     if (!leaving(robot.id)) continue;

@@ -90,10 +90,10 @@ MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const V
     const Vec2 contact = s.ball - u * dribbler_distance(s);
     if (!s.field.in_their_defense_area(contact, radius(s) + kAreaTouchClearance)) {
       intent.avoid_their_defense_area = false;
-      // The robot's centre stops outside the area: it brakes from up to 1 m/s after the touch, and a robot
-      // wholly inside (its centre a radius deep) is a foul.
+      // The robot stops wholly outside the area: a ball coming back off their keeper or the goal touches a
+      // robot standing partly inside (a foul).
       double through = (intent.target - s.ball).norm();
-      while (through > 0 && s.field.in_their_defense_area(s.ball + u * through, 0.0)) through -= 0.01;
+      while (through > 0 && s.field.in_their_defense_area(s.ball + u * through, radius(s))) through -= 0.01;
       intent.target = s.ball + u * std::max(through, 0.0);
     }
   } else {

@@ -166,6 +166,17 @@ Vec2 TrajectoryMotionPlanner::zone_guarded(const wm::RobotState& robot, Vec2 vel
   };
   if (intent.avoid_their_defense_area) keep_out(their_defense_zone(zones), false);
   if (intent.avoid_our_defense_area) keep_out(our_defense_zone(zones), true);
+  if (intent.avoid_ball_radius > 0 && zones.ball) {
+    // The ball's circle (keep-out in STOP and at their restarts, our restart's kicker after its touch).
+    const Vec2 from_ball = robot.position - *zones.ball;
+    const double distance = from_ball.norm() - intent.avoid_ball_radius;
+    if (from_ball.norm() > kOnZoneEdge) {
+      const Vec2 out = from_ball / from_ball.norm();
+      const double approach = -velocity.dot(out);
+      const double allowed = distance <= 0 ? 0.0 : a * (std::sqrt(tau * tau + 2 * distance / a) - tau);
+      if (approach > allowed) velocity += (approach - allowed) * out;
+    }
+  }
   return velocity;
 }
 

@@ -106,6 +106,17 @@ void PlannedMatch::step_referee(wm::testing::SimHarness& harness, const sim::Wor
   if (harness.sim().apply(request).empty()) ++placements_teleported_;
 }
 
+Result<referee::RefereeProfile> unattended_strict_ai(double half_duration) {
+  Result<referee::RefereeProfile> profile = referee::load_referee_profile("strict_ai");
+  if (!profile) return profile;
+  profile->game.half_duration = half_duration;
+  profile->game.half_time = 10;
+  profile->game.auto_continue = true;
+  profile->game.early_end_goals = 0;
+  profile->game.extra_time.enabled = false;
+  return profile;
+}
+
 bool PlannedMatch::run_until_final_whistle(
     time::Duration limit, const std::function<void(const sim::DetectionFrame&, const sim::WorldSnapshot&)>& after_frame) {
   const time::Timestamp end = harness_.now() + limit;

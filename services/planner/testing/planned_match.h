@@ -50,6 +50,12 @@ struct PlannedMatchOptions {
   Strategy yellow_strategy = Strategy::kBase;
 };
 
+/// The `strict_ai` profile's rules (every foul refereed, cards, defense areas, no progress) for matches that
+/// run unattended and comparably: restarts continue without an operator, halves of `half_duration` s of
+/// playing time, a 10 s half-time break, no early end and no extra time (always two full halves). Used by
+/// bench/match_series and the strategy tests.
+Result<referee::RefereeProfile> unattended_strict_ai(double half_duration);
+
 /// A referee command issued `at` seconds after the start, with what the referee announces with it.
 struct ScriptedCommand {
   double at = 0;
