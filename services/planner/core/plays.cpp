@@ -729,13 +729,25 @@ void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& o
 
 /// In normal play the keeper clears a slow ball lying in our defense area or within kKeeperClearMargin of
 /// it: no field player may fetch it there (robots keep out of our area, and an attacker behind the ball
-/// would stand inside it), so without the keeper such a ball lies until the no-progress restart.
+/// would stand inside it), so without the keeper such a ball lies until the no-progress restart. Outside the
+/// area only when it is there kKeeperClearLead before any opponent: else an opponent shoots into the goal
+/// the keeper left.
 constexpr double kKeeperClearMargin = 0.3;    // m around our defense area
 constexpr double kKeeperClearMaxSpeed = 0.8;  // m/s: a faster ball is guarded, not chased
+constexpr double kKeeperClearLead = 0.3;      // m the keeper must be nearer a ball outside the area
 
 bool keeper_should_clear(const Situation& s) {
-  return s.keeper && s.ball_known && s.ball_velocity.norm() <= kKeeperClearMaxSpeed &&
-         s.field.in_our_defense_area(s.ball, kKeeperClearMargin) && s.field.in_field(s.ball);
+  if (!s.keeper || !s.ball_known || s.ball_velocity.norm() > kKeeperClearMaxSpeed ||
+      !s.field.in_our_defense_area(s.ball, kKeeperClearMargin) || !s.field.in_field(s.ball)) {
+    return false;
+  }
+  if (s.field.in_our_defense_area(s.ball, 0.0)) return true;
+  const wm::RobotState* keeper = find_robot(s, *s.keeper);
+  if (!keeper) return false;
+  const double keeper_distance = (keeper->position - s.ball).norm();
+  return std::none_of(s.enemies.begin(), s.enemies.end(), [&](const wm::RobotState& enemy) {
+    return (enemy.position - s.ball).norm() < keeper_distance + kKeeperClearLead;
+  });
 }
 
 /// The keeper clears the ball: the clear_ball skill, allowed in our defense area.
