@@ -8,8 +8,9 @@
 // The strategies swap colours every other seed.
 //
 // Per pairing it prints, per strategy and per match on average: goals for / against, passes tried /
-// completed, shots / on target, possession share (sslctl's PlayAccount on the ground truth, the kicker's
-// intent from its planner's skill), and every game event by type, fouls marked, "avoidable" ones (keep-out,
+// completed, shots / on target, possession share, kickoffs and free kicks taken and kept (the next touch a
+// teammate's, or a goal) (sslctl's PlayAccount on the ground truth, the kicker's intent from its planner's
+// skill), and every game event by type, fouls marked, "avoidable" ones (keep-out,
 // too fast in STOP, defense area, double touch, crash) counted apart. Budget (../shared/design.md): base
 // beats ball_chaser by >= 3 goals per match over 20 seeds, >= 70 % of passes completed, 0 avoidable fouls.
 //
@@ -160,6 +161,7 @@ std::optional<std::string> play_in_child(const Pairing& pairing, std::uint64_t s
 struct Totals {
   double goals_for = 0, goals_against = 0;
   double passes_tried = 0, passes_completed = 0, shots = 0, on_target = 0, possession = 0, possession_all = 0;
+  double restarts_taken = 0, restarts_kept = 0;  // kickoffs and free kicks
   std::map<std::string, double> events;  // by type
   double fouls = 0, avoidable_fouls = 0;
   double wins = 0, draws = 0;
@@ -182,6 +184,8 @@ void add(Totals& t, const nlohmann::json& match, const char* us, const char* the
     t.on_target += mine["play"]["shots_on_target"].get<double>();
     t.possession += mine["play"]["possession_s"].get<double>();
     t.possession_all += mine["play"]["possession_s"].get<double>() + theirs["play"]["possession_s"].get<double>();
+    t.restarts_taken += mine["play"]["restarts_taken"].get<double>();
+    t.restarts_kept += mine["play"]["restarts_kept"].get<double>();
   }
   if (match.contains("tactics") && match["tactics"].contains(us)) {
     for (const auto& [name, count] : match["tactics"][us].items()) t.tactics[name] += count.get<double>();
@@ -226,6 +230,9 @@ void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& ma
   row("shots", a.shots / n, b.shots / n);
   row("shots on target", a.on_target / n, b.on_target / n);
   row("possession (%)", ratio(a.possession, a.possession_all), ratio(b.possession, b.possession_all), "%14.0f");
+  row("kickoffs + free kicks taken", a.restarts_taken / n, b.restarts_taken / n);
+  row("  kept or scored (%)", ratio(a.restarts_kept, a.restarts_taken), ratio(b.restarts_kept, b.restarts_taken),
+      "%14.0f");
   row("fouls", a.fouls / n, b.fouls / n);
   row("avoidable fouls (!!)", a.avoidable_fouls / n, b.avoidable_fouls / n);
   std::set<std::string> types;

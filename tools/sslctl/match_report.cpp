@@ -81,6 +81,9 @@ void MatchReportBuilder::on_referee(const referee::RefereeState& state, time::Ti
       MatchReport::Goal goal{.at = at, .stage = state.stage, .team = event.by_team, .by_bot = event.by_bot};
       if (state.stage_time_left) goal.stage_time_left = time::to_seconds(*state.stage_time_left);
       report_.goals.push_back(goal);
+      if (event.by_team != referee::Team::kUnknown) {
+        play_.on_goal(event.by_team == referee::Team::kBlue ? TeamColor::kBlue : TeamColor::kYellow);
+      }
     }
   }
   report_.source = state.source_identifier;
@@ -91,7 +94,21 @@ void MatchReportBuilder::on_referee(const referee::RefereeState& state, time::Ti
     line->yellow_cards = info->yellow_cards;
     line->red_cards = info->red_cards;
   }
-  play_.on_referee(activity_of(state.command) == Activity::kInPlay, state.blue_team_on_positive_half);
+  // The team taking the restart the ball is in play from: a free kick's, or the kickoff's NORMAL_START.
+  using C = referee::Command;
+  std::optional<TeamColor> restart_team;
+  if (state.command == C::kPrepareKickoffBlue || state.command == C::kPrepareKickoffYellow) {
+    kickoff_team_ = referee::team_of(state.command);
+  } else if (state.command == C::kNormalStart) {
+    restart_team = kickoff_team_;
+  } else {
+    kickoff_team_.reset();
+    if (state.command == C::kDirectFreeBlue || state.command == C::kDirectFreeYellow ||
+        state.command == C::kIndirectFreeBlue || state.command == C::kIndirectFreeYellow) {
+      restart_team = referee::team_of(state.command);
+    }
+  }
+  play_.on_referee(activity_of(state.command) == Activity::kInPlay, state.blue_team_on_positive_half, restart_team);
   report_.final_stage = state.stage;
   if (state.stage == referee::Stage::kPostGame) report_.final_whistle = true;
   report_.duration = at;
@@ -189,9 +206,9 @@ std::string to_text(const MatchReport& r) {
       char text[256];
       std::snprintf(text, sizeof text,
                     "play %s: passes %u tried, %u completed (%.0f %%); shots %u, %u on target; kicks %u; "
-                    "possession %.0f %%\n",
+                    "possession %.0f %%; restarts %u taken, %u kept\n",
                     name, p.passes_tried, p.passes_completed, percent(p.passes_completed, p.passes_tried), p.shots,
-                    p.shots_on_target, p.kicks, percent(p.possession, possessed));
+                    p.shots_on_target, p.kicks, percent(p.possession, possessed), p.restarts_taken, p.restarts_kept);
       out << text;
     }
   }
@@ -225,7 +242,8 @@ std::string to_json(const MatchReport& r) {
       const TeamPlay& p = line->play;
       out["teams"][key]["play"] = {{"passes_tried", p.passes_tried}, {"passes_completed", p.passes_completed},
                                    {"shots", p.shots},               {"shots_on_target", p.shots_on_target},
-                                   {"kicks", p.kicks},               {"possession_s", p.possession}};
+                                   {"kicks", p.kicks},               {"possession_s", p.possession},
+                                   {"restarts_taken", p.restarts_taken}, {"restarts_kept", p.restarts_kept}};
     }
   }
   out["goals"] = json::array();

@@ -9,13 +9,19 @@ void PlayAccount::set_field(double length, double goal_width) {
   goal_width_ = goal_width;
 }
 
-void PlayAccount::on_referee(bool in_play, std::optional<bool> blue_on_positive_half) {
+void PlayAccount::on_referee(bool in_play, std::optional<bool> blue_on_positive_half,
+                             std::optional<TeamColor> restart_team) {
   if (!in_play) {
     open_pass_.reset();  // play stopped before anybody took the pass: failed
+    open_restart_.reset();  // or the restart: not kept (unless on_goal came first)
     possession_.reset();
     last_toucher_id_.reset();
     last_toucher_team_.reset();
   }
+  if (in_play && restart_team && (!in_play_ || restart_team != restart_team_)) {
+    open_restart_ = OpenRestart{.team = *restart_team};
+  }
+  restart_team_ = restart_team;
   if (in_play && !in_play_) compare_speed_ = false;
   in_play_ = in_play;
   if (blue_on_positive_half) blue_on_positive_half_ = blue_on_positive_half;
@@ -46,6 +52,7 @@ void PlayAccount::on_frame(const geom::Vec2& ball, std::span<const Robot> robots
       // A touch settles an open pass (not the kicker still at the ball it just kicked).
       const bool kicker_still = open_pass_ && nearest->team == open_pass_->team && nearest->id == open_pass_->kicker &&
                                 last_toucher_id_ == nearest->id && last_toucher_team_ == nearest->team;
+      if (!(last_toucher_id_ == nearest->id && last_toucher_team_ == nearest->team)) settle_restart(*nearest);
       if (open_pass_ && !kicker_still) {
         if (nearest->team == open_pass_->team && nearest->id != open_pass_->kicker) {
           ++team_of(open_pass_->team).passes_completed;
@@ -67,7 +74,30 @@ void PlayAccount::on_frame(const geom::Vec2& ball, std::span<const Robot> robots
   last_speed_ = speed;
 }
 
+void PlayAccount::on_goal(TeamColor team) {
+  if (open_restart_ && open_restart_->taker && open_restart_->team == team) ++team_of(team).restarts_kept;
+  open_restart_.reset();
+}
+
+void PlayAccount::settle_restart(const Robot& robot) {
+  if (!open_restart_) return;
+  if (!open_restart_->taker) {
+    // The first touch: the restart's taker, or the other team got there first (nothing taken).
+    if (robot.team == open_restart_->team) {
+      open_restart_->taker = robot.id;
+      ++team_of(robot.team).restarts_taken;
+    } else {
+      open_restart_.reset();
+    }
+    return;
+  }
+  if (robot.team == open_restart_->team && robot.id == *open_restart_->taker) return;  // the taker again
+  if (robot.team == open_restart_->team) ++team_of(robot.team).restarts_kept;
+  open_restart_.reset();
+}
+
 void PlayAccount::on_kick(const Robot& kicker, const geom::Vec2& ball, const geom::Vec2& velocity) {
+  if (!(last_toucher_id_ == kicker.id && last_toucher_team_ == kicker.team)) settle_restart(kicker);
   TeamPlay& play = team_of(kicker.team);
   ++play.kicks;
   possession_ = kicker.team;

@@ -17,6 +17,9 @@
 //    Intent::kShot: a shooter's kick that misses the goal's direction is a deflection, not a pass).
 //    It is completed when the next robot to touch the ball is a teammate of the kicker (not the kicker),
 //    failed when it is an opponent, the kicker itself, or play stops first.
+//  * a restart (a kickoff or free kick, told by the caller with the team taking it): taken at the first touch
+//    by that team once the ball is in play; kept when the next robot to touch the ball after its taker is a
+//    teammate, or when the team scores before anybody else touches it (on_goal).
 #pragma once
 
 #include <cstdint>
@@ -35,6 +38,8 @@ struct TeamPlay {
   std::uint32_t shots = 0;
   std::uint32_t shots_on_target = 0;
   std::uint32_t kicks = 0;        // every kick in play (passes, shots, clearances)
+  std::uint32_t restarts_taken = 0;  // kickoffs and free kicks
+  std::uint32_t restarts_kept = 0;   // of those: a teammate touched the ball next, or the team scored
   double possession = 0;          // s in play with this team's robot the last to touch the ball
 };
 
@@ -60,8 +65,12 @@ class PlayAccount {
 
   /// The field's length and goal width (m): goals lie at x = +-length / 2.
   void set_field(double length, double goal_width);
-  /// The referee's state: whether the ball is in play, and which half blue defends.
-  void on_referee(bool in_play, std::optional<bool> blue_on_positive_half);
+  /// The referee's state: whether the ball is in play, which half blue defends, and the team taking the
+  /// kickoff or free kick the ball is (or is about to be) in play from.
+  void on_referee(bool in_play, std::optional<bool> blue_on_positive_half,
+                  std::optional<TeamColor> restart_team = std::nullopt);
+  /// A goal for `team` (settles the restart it was taking).
+  void on_goal(TeamColor team);
   /// One observation of the ball and every robot seen at `t` (older samples are ignored).
   void on_frame(const geom::Vec2& ball, std::span<const Robot> robots, time::Timestamp t);
 
@@ -73,7 +82,13 @@ class PlayAccount {
     std::uint32_t kicker;
   };
   TeamPlay& team_of(TeamColor color) { return color == TeamColor::kBlue ? blue_ : yellow_; }
+  struct OpenRestart {
+    TeamColor team;
+    std::optional<std::uint32_t> taker;  // once taken
+  };
   void on_kick(const Robot& kicker, const geom::Vec2& ball, const geom::Vec2& velocity);
+  /// A touch (or kick) by `robot` while a restart is open: takes or settles it.
+  void settle_restart(const Robot& robot);
   bool is_shot(TeamColor team, const geom::Vec2& ball, const geom::Vec2& velocity, bool& on_target) const;
 
   TeamPlay blue_;
@@ -88,6 +103,8 @@ class PlayAccount {
   double last_speed_ = 0;
   std::optional<TeamColor> possession_;
   std::optional<OpenPass> open_pass_;
+  std::optional<OpenRestart> open_restart_;
+  std::optional<TeamColor> restart_team_;  // as last told by on_referee
   std::optional<std::uint32_t> last_toucher_id_;
   std::optional<TeamColor> last_toucher_team_;
 };

@@ -121,5 +121,42 @@ TEST_F(PlayAccountTest, APassOpenWhenPlayStopsFails) {
   EXPECT_EQ(account_.team(TeamColor::kBlue).passes_completed, 0u);
 }
 
+TEST_F(PlayAccountTest, AFreeKickPassedToATeammateIsKept) {
+  account_.on_referee(false, false);
+  account_.on_referee(true, false, TeamColor::kBlue);  // blue's free kick is taken
+  roll({0.1, 0}, {0, 0}, 0.3);                                           // blue 1, the taker
+  const Vec2 at = roll({0.1, 0}, Vec2(1.8, 1.0).normalized() * 3, 0.69);  // to blue 2
+  roll(at, {0, 0}, 0.3);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_taken, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_kept, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kYellow).restarts_taken, 0u);
+}
+
+TEST_F(PlayAccountTest, AFreeKickTheOpponentsTouchNextIsNotKept) {
+  account_.on_referee(false, false);
+  account_.on_referee(true, false, TeamColor::kBlue);
+  roll({0.1, 0}, {0, 0}, 0.3);
+  const Vec2 at = roll({0.1, 0}, Vec2(0.9, -1.0).normalized() * 3, 0.42);  // straight at yellow 1
+  roll(at, {0, 0}, 0.3);
+  roll({2.0 - 0.1, 1.0}, {0, 0}, 0.3);  // then blue 2 has it: too late
+  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_taken, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_kept, 0u);
+}
+
+TEST_F(PlayAccountTest, ARestartThatScoresIsKeptAndOneThatGoesOutIsNot) {
+  account_.on_referee(false, false);
+  account_.on_referee(true, false, TeamColor::kBlue);
+  roll({0.1, 0}, {0, 0}, 0.3);
+  roll({0.1, 0}, {4, 0}, 0.3);  // a shot
+  account_.on_goal(TeamColor::kBlue);
+  account_.on_referee(false, false);
+  account_.on_referee(true, false, TeamColor::kBlue);  // the next one goes out
+  roll({0.1, 0}, {0, 0}, 0.3);
+  roll({0.1, 0}, {0, 3}, 0.5);
+  account_.on_referee(false, false);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_taken, 2u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_kept, 1u);
+}
+
 }  // namespace
 }  // namespace ssl::sslctl
