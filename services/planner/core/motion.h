@@ -37,6 +37,7 @@ struct MotionIntent {
   double max_speed = 3.0;                 // m/s
   double max_angular_speed = std::numeric_limits<double>::infinity();  // rad/s (below the robot's limit)
   double avoid_ball_radius = 0;           // m, robot centre keeps this far from the ball; 0: may touch it
+  bool guard_ball_circle = false;         // that circle is a hard limit on the command too (the zone guard)
   bool avoid_placement_corridor = false;  // keep out of the ball -> designated position stadium
   bool avoid_their_defense_area = true;   // keep the rule distance (+ margin) from their defense area
   bool avoid_our_defense_area = true;     // false only for the goalkeeper

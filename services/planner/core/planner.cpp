@@ -383,6 +383,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
     MotionIntent& kicker = intents.robots[*s.restart_kicker];
     kicker.avoid_ball_radius = std::max(
         kicker.avoid_ball_radius, config.robot_radius + s.field.size().ball_radius + kRestartKickerBallClearance);
+    kicker.guard_ball_circle = true;
   }
   std::array<int, 2> leaving_on_side{};  // -y, +y
   for (const wm::RobotState& robot : robots) {

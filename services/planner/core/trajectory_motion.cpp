@@ -166,8 +166,8 @@ Vec2 TrajectoryMotionPlanner::zone_guarded(const wm::RobotState& robot, Vec2 vel
   };
   if (intent.avoid_their_defense_area) keep_out(their_defense_zone(zones), false);
   if (intent.avoid_our_defense_area) keep_out(our_defense_zone(zones), true);
-  if (intent.avoid_ball_radius > 0 && zones.ball) {
-    // The ball's circle (keep-out in STOP and at their restarts, our restart's kicker after its touch).
+  if (intent.guard_ball_circle && intent.avoid_ball_radius > 0 && zones.ball) {
+    // The ball's circle, where the intent asks (our restart's kicker after its touch).
     const Vec2 from_ball = robot.position - *zones.ball;
     const double distance = from_ball.norm() - intent.avoid_ball_radius;
     if (from_ball.norm() > kOnZoneEdge) {

@@ -90,10 +90,10 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
                           double dt) const;
   /// `velocity` (team frame, m/s) of `robot` limited by the contact guard against every other robot.
   Vec2 guarded(const wm::RobotState& robot, Vec2 velocity, const Zones& zones) const;
-  /// `velocity` limited so that `robot` can still stop before each defense zone and the ball's circle the
-  /// intent keeps it out of (after guard_latency at guard_deceleration), and never goes deeper into one it
-  /// is inside: the zones are a hard limit whatever the plan (a robot following a moving target, or a path
-  /// that overshoots).
+  /// `velocity` limited so that `robot` can still stop before each defense zone the intent keeps it out of
+  /// (and the ball's circle, with guard_ball_circle) after guard_latency at guard_deceleration, and never
+  /// goes deeper into one it is inside: the zones are a hard limit whatever the plan (a robot following a
+  /// moving target, or a path that overshoots).
   Vec2 zone_guarded(const wm::RobotState& robot, Vec2 velocity, const MotionIntent& intent,
                     const Zones& zones) const;
   /// `target` moved out of any robot standing on it (our robots: where their planned paths end).
