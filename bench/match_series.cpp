@@ -161,6 +161,7 @@ std::optional<std::string> play_in_child(const Pairing& pairing, std::uint64_t s
 struct Totals {
   double goals_for = 0, goals_against = 0;
   double passes_tried = 0, passes_completed = 0, shots = 0, on_target = 0, possession = 0, possession_all = 0;
+  double passes_intercepted = 0, passes_out = 0;
   double restarts_taken = 0, restarts_kept = 0;  // kickoffs and free kicks
   std::map<std::string, double> events;  // by type
   double fouls = 0, avoidable_fouls = 0;
@@ -184,6 +185,8 @@ void add(Totals& t, const nlohmann::json& match, const char* us, const char* the
     t.on_target += mine["play"]["shots_on_target"].get<double>();
     t.possession += mine["play"]["possession_s"].get<double>();
     t.possession_all += mine["play"]["possession_s"].get<double>() + theirs["play"]["possession_s"].get<double>();
+    t.passes_intercepted += mine["play"]["passes_intercepted"].get<double>();
+    t.passes_out += mine["play"]["passes_out"].get<double>();
     t.restarts_taken += mine["play"]["restarts_taken"].get<double>();
     t.restarts_kept += mine["play"]["restarts_kept"].get<double>();
   }
@@ -227,6 +230,8 @@ void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& ma
   row("passes completed", a.passes_completed / n, b.passes_completed / n);
   row("passes completed (%)", ratio(a.passes_completed, a.passes_tried), ratio(b.passes_completed, b.passes_tried),
       "%14.0f");
+  row("  intercepted", a.passes_intercepted / n, b.passes_intercepted / n);
+  row("  out of play first", a.passes_out / n, b.passes_out / n);
   row("shots", a.shots / n, b.shots / n);
   row("shots on target", a.on_target / n, b.on_target / n);
   row("possession (%)", ratio(a.possession, a.possession_all), ratio(b.possession, b.possession_all), "%14.0f");

@@ -205,10 +205,11 @@ std::string to_text(const MatchReport& r) {
       const TeamPlay& p = team->play;
       char text[256];
       std::snprintf(text, sizeof text,
-                    "play %s: passes %u tried, %u completed (%.0f %%); shots %u, %u on target; kicks %u; "
-                    "possession %.0f %%; restarts %u taken, %u kept\n",
-                    name, p.passes_tried, p.passes_completed, percent(p.passes_completed, p.passes_tried), p.shots,
-                    p.shots_on_target, p.kicks, percent(p.possession, possessed), p.restarts_taken, p.restarts_kept);
+                    "play %s: passes %u tried, %u completed (%.0f %%), %u intercepted, %u out; shots %u, %u on "
+                    "target; kicks %u; possession %.0f %%; restarts %u taken, %u kept\n",
+                    name, p.passes_tried, p.passes_completed, percent(p.passes_completed, p.passes_tried),
+                    p.passes_intercepted, p.passes_out, p.shots, p.shots_on_target, p.kicks,
+                    percent(p.possession, possessed), p.restarts_taken, p.restarts_kept);
       out << text;
     }
   }
@@ -241,6 +242,7 @@ std::string to_json(const MatchReport& r) {
     if (r.robot_frames > 0) {
       const TeamPlay& p = line->play;
       out["teams"][key]["play"] = {{"passes_tried", p.passes_tried}, {"passes_completed", p.passes_completed},
+                                   {"passes_intercepted", p.passes_intercepted}, {"passes_out", p.passes_out},
                                    {"shots", p.shots},               {"shots_on_target", p.shots_on_target},
                                    {"kicks", p.kicks},               {"possession_s", p.possession},
                                    {"restarts_taken", p.restarts_taken}, {"restarts_kept", p.restarts_kept}};

@@ -12,7 +12,8 @@ void PlayAccount::set_field(double length, double goal_width) {
 void PlayAccount::on_referee(bool in_play, std::optional<bool> blue_on_positive_half,
                              std::optional<TeamColor> restart_team) {
   if (!in_play) {
-    open_pass_.reset();  // play stopped before anybody took the pass: failed
+    if (open_pass_) ++team_of(open_pass_->team).passes_out;  // play stopped before anybody took the pass
+    open_pass_.reset();
     open_restart_.reset();  // or the restart: not kept (unless on_goal came first)
     possession_.reset();
     last_toucher_id_.reset();
@@ -56,6 +57,8 @@ void PlayAccount::on_frame(const geom::Vec2& ball, std::span<const Robot> robots
       if (open_pass_ && !kicker_still) {
         if (nearest->team == open_pass_->team && nearest->id != open_pass_->kicker) {
           ++team_of(open_pass_->team).passes_completed;
+        } else if (nearest->team != open_pass_->team) {
+          ++team_of(open_pass_->team).passes_intercepted;
         }
         open_pass_.reset();
       }
@@ -106,6 +109,8 @@ void PlayAccount::on_kick(const Robot& kicker, const geom::Vec2& ball, const geo
   // A kick settles the pass before it: a teammate's one-touch kick took it.
   if (open_pass_ && kicker.team == open_pass_->team && kicker.id != open_pass_->kicker) {
     ++team_of(open_pass_->team).passes_completed;
+  } else if (open_pass_ && kicker.team != open_pass_->team) {
+    ++team_of(open_pass_->team).passes_intercepted;
   }
   open_pass_.reset();
   bool on_target = false;

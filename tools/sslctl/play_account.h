@@ -16,7 +16,7 @@
 //  * a pass: any other kick, unless the observer says the kicker meant something else (Intent::kClear, or
 //    Intent::kShot: a shooter's kick that misses the goal's direction is a deflection, not a pass).
 //    It is completed when the next robot to touch the ball is a teammate of the kicker (not the kicker),
-//    failed when it is an opponent, the kicker itself, or play stops first.
+//    failed when it is an opponent (intercepted), the kicker itself, or play stops first (out).
 //  * a restart (a kickoff or free kick, told by the caller with the team taking it): taken at the first touch
 //    by that team once the ball is in play; kept when the next robot to touch the ball after its taker is a
 //    teammate, or when the team scores before anybody else touches it (on_goal).
@@ -35,6 +35,8 @@ namespace ssl::sslctl {
 struct TeamPlay {
   std::uint32_t passes_tried = 0;
   std::uint32_t passes_completed = 0;
+  std::uint32_t passes_intercepted = 0;  // failed: an opponent touched the ball next
+  std::uint32_t passes_out = 0;          // failed: play stopped first (the ball left the field, a foul, ...)
   std::uint32_t shots = 0;
   std::uint32_t shots_on_target = 0;
   std::uint32_t kicks = 0;        // every kick in play (passes, shots, clearances)

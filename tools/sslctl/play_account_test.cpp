@@ -58,6 +58,7 @@ TEST_F(PlayAccountTest, AnInterceptedPassFailsAndPossessionChanges) {
   roll(at, {0, 0}, 0.5);
   EXPECT_EQ(account_.team(TeamColor::kBlue).passes_tried, 1u);
   EXPECT_EQ(account_.team(TeamColor::kBlue).passes_completed, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_intercepted, 1u);
   EXPECT_GT(account_.team(TeamColor::kYellow).possession, 0.4);
 }
 
@@ -119,6 +120,8 @@ TEST_F(PlayAccountTest, APassOpenWhenPlayStopsFails) {
   roll({2.0 - 0.1, 1.0}, {0, 0}, 0.3);  // placed at blue 2 for the next play
   EXPECT_EQ(account_.team(TeamColor::kBlue).passes_tried, 1u);
   EXPECT_EQ(account_.team(TeamColor::kBlue).passes_completed, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_out, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_intercepted, 0u);
 }
 
 TEST_F(PlayAccountTest, AFreeKickPassedToATeammateIsKept) {
