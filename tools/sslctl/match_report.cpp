@@ -95,18 +95,14 @@ void MatchReportBuilder::on_referee(const referee::RefereeState& state, time::Ti
     line->red_cards = info->red_cards;
   }
   // The team taking the restart the ball is in play from: a free kick's, or the kickoff's NORMAL_START.
-  using C = referee::Command;
   std::optional<TeamColor> restart_team;
-  if (state.command == C::kPrepareKickoffBlue || state.command == C::kPrepareKickoffYellow) {
+  if (referee::is_kickoff(state.command)) {
     kickoff_team_ = referee::team_of(state.command);
-  } else if (state.command == C::kNormalStart) {
+  } else if (state.command == referee::Command::kNormalStart) {
     restart_team = kickoff_team_;
   } else {
     kickoff_team_.reset();
-    if (state.command == C::kDirectFreeBlue || state.command == C::kDirectFreeYellow ||
-        state.command == C::kIndirectFreeBlue || state.command == C::kIndirectFreeYellow) {
-      restart_team = referee::team_of(state.command);
-    }
+    if (referee::is_free_kick(state.command)) restart_team = referee::team_of(state.command);
   }
   play_.on_referee(activity_of(state.command) == Activity::kInPlay, state.blue_team_on_positive_half, restart_team);
   report_.final_stage = state.stage;

@@ -20,6 +20,13 @@ constexpr double kFollowDistance = 1.0;   // m from a moving target within which
 constexpr double kOnZoneEdge = 1e-6;      // m from a zone's edge that counts as on it (the zone guard)
 constexpr double kExitOvershoot = 0.05;   // m beyond a zone's edge that a robot leaving it heads for
 
+
+/// m/s towards an edge `distance` m away at which a robot still stops before it: the command acts after
+/// `latency` s, then the robot brakes at `deceleration`.
+double stopping_speed(double distance, double deceleration, double latency) {
+  return deceleration * (std::sqrt(latency * latency + 2 * distance / deceleration) - latency);
+}
+
 }  // namespace
 
 TrajectoryMotionPlanner::TrajectoryMotionPlanner(const MotionLimits& limits, const TrajectoryMotionParams& params)
@@ -138,7 +145,7 @@ Vec2 TrajectoryMotionPlanner::guarded(const wm::RobotState& robot, Vec2 velocity
     const double away = std::max(0.0, other.velocity.dot(toward));
     const double share =
         std::max(0.0, distance - touching) / 2 + away * away / (2 * params_.guard_other_braking);
-    const double allowed = a * (std::sqrt(tau * tau + 2 * share / a) - tau);
+    const double allowed = stopping_speed(share, a, tau);
     if (approach > allowed) velocity -= (approach - allowed) * toward;
   }
   return velocity;
@@ -148,33 +155,31 @@ Vec2 TrajectoryMotionPlanner::zone_guarded(const wm::RobotState& robot, Vec2 vel
                                            const Zones& zones) const {
   const double a = params_.guard_deceleration;
   const double tau = params_.guard_latency;
+  // Along `out` (unit, out of the zone) `distance` m from its edge (0 on it or inside): towards the edge no
+  // faster than still stops there, and nothing deeper once there.
+  const auto hold_off = [&](const Vec2& out, double distance) {
+    const double approach = -velocity.dot(out);
+    const double allowed = distance > 0 ? stopping_speed(distance, a, tau) : 0.0;
+    if (approach > allowed) velocity += (approach - allowed) * out;
+  };
   const auto keep_out = [&](const geom::Rectangle& zone, bool opens_towards_positive_x) {
     const Vec2& p = robot.position;
-    const Vec2 offset = geom::closest_point(zone, p) - p;
+    const Vec2 offset = p - geom::closest_point(zone, p);
     const double distance = zone.contains(p) ? 0.0 : offset.norm();
     if (distance < kOnZoneEdge) {
-      // Inside or on the edge: nothing deeper than standing still.
-      const Vec2 out = zone_exit_normal(zone, p, opens_towards_positive_x);
-      const double deeper = -velocity.dot(out);
-      if (deeper > 0) velocity += deeper * out;
-      return;
+      hold_off(zone_exit_normal(zone, p, opens_towards_positive_x), 0.0);
+    } else {
+      hold_off(offset / distance, distance);
     }
-    const Vec2 toward = offset / distance;
-    const double approach = velocity.dot(toward);
-    const double allowed = a * (std::sqrt(tau * tau + 2 * distance / a) - tau);
-    if (approach > allowed) velocity -= (approach - allowed) * toward;
   };
   if (intent.avoid_their_defense_area) keep_out(their_defense_zone(zones), false);
   if (intent.avoid_our_defense_area) keep_out(our_defense_zone(zones), true);
   if (intent.guard_ball_circle && intent.avoid_ball_radius > 0 && zones.ball) {
     // The ball's circle, where the intent asks (our restart's kicker after its touch).
     const Vec2 from_ball = robot.position - *zones.ball;
-    const double distance = from_ball.norm() - intent.avoid_ball_radius;
-    if (from_ball.norm() > kOnZoneEdge) {
-      const Vec2 out = from_ball / from_ball.norm();
-      const double approach = -velocity.dot(out);
-      const double allowed = distance <= 0 ? 0.0 : a * (std::sqrt(tau * tau + 2 * distance / a) - tau);
-      if (approach > allowed) velocity += (approach - allowed) * out;
+    const double centre_distance = from_ball.norm();
+    if (centre_distance > kOnZoneEdge) {
+      hold_off(from_ball / centre_distance, std::max(0.0, centre_distance - intent.avoid_ball_radius));
     }
   }
   return velocity;

@@ -40,9 +40,6 @@ const ObservedRobot* nearest_within(const std::vector<ObservedRobot>& robots, do
 bool is_direct_free(Command command) {
   return command == Command::kDirectFreeYellow || command == Command::kDirectFreeBlue;
 }
-bool is_kickoff(Command command) {
-  return command == Command::kPrepareKickoffYellow || command == Command::kPrepareKickoffBlue;
-}
 bool is_penalty(Command command) {
   return command == Command::kPreparePenaltyYellow || command == Command::kPreparePenaltyBlue;
 }

@@ -182,6 +182,15 @@ std::optional<TeamColor> team_of(Command command) {
   return std::nullopt;
 }
 
+bool is_kickoff(Command command) {
+  return command == Command::kPrepareKickoffYellow || command == Command::kPrepareKickoffBlue;
+}
+
+bool is_free_kick(Command command) {
+  return command == Command::kDirectFreeYellow || command == Command::kDirectFreeBlue ||
+         command == Command::kIndirectFreeYellow || command == Command::kIndirectFreeBlue;
+}
+
 bool is_foul(GameEventType type) {
   using T = GameEventType;
   switch (type) {

@@ -155,6 +155,10 @@ std::string_view to_string(GameEventType type);
 /// The team a command is for (kicker, placer, team in timeout, scorer); nullopt for HALT, STOP,
 /// NORMAL_START and FORCE_START.
 std::optional<TeamColor> team_of(Command command);
+/// PREPARE_KICKOFF of either team.
+bool is_kickoff(Command command);
+/// A free kick of either team: DIRECT_FREE, or INDIRECT_FREE (no longer in the rules, a free kick all the same).
+bool is_free_kick(Command command);
 
 /// A foul of the rules (section "Fouls"): stopping fouls, non-stopping fouls and their "skipped" variants
 /// (raised with advantage). Not fouls: ball out, goals, placements, no progress, cards, substitutions.
