@@ -73,6 +73,39 @@ ssl::sslctl::PlayAccount::Intent intent_of(const std::string& skill) {
   return Intent::kUnknown;
 }
 
+/// What each robot meant by its kicks: the skill it last armed its kicker in. A kick shows on a camera frame
+/// a few planner ticks after the command that made it, when the planner may already have moved on (the
+/// keeper back to defending after its clearance), so the skill of the moment would misname it. A robot that
+/// did not arm its kicker lately did not kick: the ball came off its body (Intent::kNoKick).
+class KickIntents {
+ public:
+  static constexpr double kArmedRecently = 0.3;  // s: a kick this soon after the kicker was armed is that skill's
+
+  /// Every frame, with both planners' last outputs; `now` in s.
+  void update(TeamColor team, const ssl::planner::PlannerOutput& out, double now) {
+    for (const ssl::planner::RobotCommand& command : out.commands) {
+      if (command.kick == ssl::planner::KickType::kNone) continue;
+      for (const ssl::planner::RoleInfo& role : out.roles) {
+        if (role.robot_id == command.id) armed_[key(team, command.id)] = Armed{role.skill, now};
+      }
+    }
+  }
+  /// The intent of robot `id` of `team` kicking now.
+  ssl::sslctl::PlayAccount::Intent intent(TeamColor team, std::uint32_t id, double now) const {
+    const auto it = armed_.find(key(team, id));
+    if (it == armed_.end() || now - it->second.at > kArmedRecently) return ssl::sslctl::PlayAccount::Intent::kNoKick;
+    return intent_of(it->second.skill);
+  }
+
+ private:
+  struct Armed {
+    std::string skill;
+    double at = 0;
+  };
+  static std::uint32_t key(TeamColor team, std::uint32_t id) { return (team == TeamColor::kBlue ? 1000u : 0u) + id; }
+  std::map<std::uint32_t, Armed> armed_;
+};
+
 /// One match, in this (child) process: its report as JSON, plus which colour strategy A played.
 std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
   auto profile = ssl::planner::testing::unattended_strict_ai(half);
@@ -93,17 +126,18 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
   ssl::sslctl::MatchReportBuilder report;
   report.set_field(field.field_length, field.goal_width);
   std::vector<ssl::sslctl::PlayAccount::Robot> robots;
+  KickIntents kick_intents;
   std::map<std::string, std::map<std::string, double>> tactics;  // team -> tactic -> robot-frames in play
   match.start_match();
   const bool finished = match.run_until_final_whistle(
       std::chrono::hours(1), [&](const ssl::sim::DetectionFrame&, const ssl::sim::WorldSnapshot& truth) {
         report.on_referee(match.builtin_referee()->state(), truth.time);
+        const double now = ssl::time::to_seconds(truth.time - match.start());
+        for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) kick_intents.update(team, match.output(team), now);
         robots.clear();
         for (const ssl::sim::RobotState& robot : truth.robots) {
           ssl::sslctl::PlayAccount::Robot seen{.team = robot.key.team, .id = robot.key.id, .position = robot.position};
-          for (const ssl::planner::RoleInfo& role : match.output(robot.key.team).roles) {
-            if (role.robot_id == robot.key.id) seen.intent = intent_of(role.skill);
-          }
+          seen.intent = kick_intents.intent(robot.key.team, robot.key.id, now);
           robots.push_back(seen);
         }
         report.on_frame(truth.ball.position.head<2>(), robots, truth.time);

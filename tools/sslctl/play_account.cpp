@@ -47,7 +47,7 @@ void PlayAccount::on_frame(const geom::Vec2& ball, std::span<const Robot> robots
   if (in_play_) {
     const bool kicked =
         compare_speed_ && speed >= kKickMinSpeed && speed < kMaxBallSpeed && speed - last_speed_ >= kKickSpeedGain;
-    if (kicked && nearest && nearest_distance <= kKickReach) {
+    if (kicked && nearest && nearest_distance <= kKickReach && nearest->intent != Intent::kNoKick) {
       on_kick(*nearest, ball, velocity);
     } else if (nearest && nearest_distance <= kTouchDistance) {
       // A touch settles an open pass (not the kicker still at the ball it just kicked).

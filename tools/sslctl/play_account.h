@@ -14,7 +14,8 @@
 //    mouth, towards it (unless its kicker meant a pass or a clearance); on target when it crosses inside the
 //    mouth (posts excluded by the ball's radius). Without the field's size (set_field) no kick is a shot.
 //  * a pass: any other kick, unless the observer says the kicker meant something else (Intent::kClear, or
-//    Intent::kShot: a shooter's kick that misses the goal's direction is a deflection, not a pass).
+//    Intent::kShot: a shooter's kick that misses the goal's direction is a deflection, not a pass), or that
+//    its kicker was not armed (Intent::kNoKick: the ball came off the robot's body, a touch and no kick).
 //    It is completed when the next robot to touch the ball is a teammate of the kicker (not the kicker),
 //    failed when it is an opponent (intercepted), the kicker itself, or play stops first (out).
 //  * a restart (a kickoff or free kick, told by the caller with the team taking it): taken at the first touch
@@ -55,8 +56,9 @@ class PlayAccount {
   static constexpr double kShotWidthMargin = 0.3;  // m beside the goal mouth a shot may cross
   static constexpr double kBallRadius = 0.0215;    // m
 
-  /// What the kicking robot meant, when the observer knows it (a lockstep match reads the planner's skill).
-  enum class Intent { kUnknown, kPass, kShot, kClear };
+  /// What the kicking robot meant, when the observer knows it (a lockstep match reads the planner's skill
+  /// and whether it armed its kicker).
+  enum class Intent { kUnknown, kPass, kShot, kClear, kNoKick };
 
   struct Robot {
     TeamColor team = TeamColor::kBlue;

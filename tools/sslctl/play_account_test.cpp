@@ -103,6 +103,19 @@ TEST_F(PlayAccountTest, AShootersKickAwayFromTheGoalIsNeitherAShotNorAPass) {
   EXPECT_EQ(account_.team(TeamColor::kBlue).kicks, 1u);
 }
 
+TEST_F(PlayAccountTest, ABallSpedUpByARobotWithoutItsKickerArmedIsATouchAndNoPass) {
+  robots_ = {{TeamColor::kBlue, 1, {0, 0}, PlayAccount::Intent::kNoKick}, {TeamColor::kYellow, 1, {1, 0}}};
+  roll({0.1, 0}, {0, 0}, 0.2);                     // at blue 1's body
+  const Vec2 at = roll({0.1, 0}, {3, 0}, 0.3);     // off it at 3 m/s, to yellow 1
+  roll(at, {0, 0}, 0.3);
+  const TeamPlay& blue = account_.team(TeamColor::kBlue);
+  EXPECT_EQ(blue.kicks, 0u);
+  EXPECT_EQ(blue.passes_tried, 0u);
+  EXPECT_EQ(blue.passes_intercepted, 0u);
+  EXPECT_NEAR(blue.possession, 0.46, 0.05);  // blue's until yellow 1 touches it, 0.26 s after the push
+  EXPECT_GT(account_.team(TeamColor::kYellow).possession, 0.2);
+}
+
 TEST_F(PlayAccountTest, NothingCountsWhileTheBallIsNotInPlay) {
   account_.on_referee(false, false);
   roll({0.1, 0}, {0, 0}, 0.3);
