@@ -232,9 +232,10 @@ MotionIntent receive(const Situation& s, const wm::RobotState& robot, const Rece
   const Vec2 v = geom::normalized_or(s.ball_velocity, Vec2(1, 0));
   const bool incoming = s.ball_known && speed > kIncomingSpeed && (p.point - s.ball).dot(v) > 0;
   if (!incoming) {
-    // A slow ball near the point is ours to take, gently; otherwise wait at the point, facing the ball.
+    // A slow ball near the point (or one that ran past it) is ours to take, gently but catching up with it;
+    // otherwise wait at the point, facing the ball.
     if (s.ball_known && (s.ball - p.point).norm() < kTakeNearPoint) {
-      MotionIntent intent = go_to_ball(s, robot, {.final_speed = 0.5});
+      MotionIntent intent = go_to_ball(s, robot, {.final_speed = 0.5 + speed});
       intent.skill = skill_name(Skill::kReceive);
       return intent;
     }

@@ -15,14 +15,20 @@ constexpr double kKickedSpeed = 1.0;           // m/s: a ball this fast away fro
 constexpr double kKickContact = 0.05;          // m beyond touching: the ball is at the passer's dribbler
 constexpr double kKickRecent = 0.15;           // s since the ball was at the dribbler: the passer kicked it
 constexpr double kKickAngle = 0.35;            // rad between the ball's run and the pass line
-constexpr double kTaken = 0.2;                 // m, receiver centre to ball: the pass arrived
+constexpr double kTaken = 0.05;                // m beyond touching, receiver to ball: the pass arrived
 constexpr double kLostSpeed = 0.3;             // m/s: a pass this slow far from its receiver is dead
 constexpr double kLostDistance = 0.8;          // m
+constexpr double kDeflectedAngle = 0.6;        // rad between the ball's run and the way to the pass's point
 constexpr double kAttackerLead = 0.2;          // s the attacker race looks ahead along the ball's motion
 constexpr double kDefenderMisfit = 0.5;        // s added for a defender slot to a robot ahead of the ball
 constexpr double kPassAreaClearance = 0.5;     // m: passes are received at least this far from their area
+constexpr double kBackPassAreaClearance = 1.0;  // m: passes back are received at least this far from ours
 constexpr std::uint32_t kRoleKeyBase = 100;    // StableAssigner keys of the styles' formations
 constexpr double kStrategyGap = 0.1;           // s without a strategy tick: play was stopped in between
+constexpr double kHoldContact = 0.04;          // m beyond touching: the ball is at the dribbler
+constexpr double kHoldAngle = 0.35;            // rad off the heading the held ball may lie
+constexpr double kHoldApproachSpeed = 0.5;     // m/s faster than the ball the holder takes it with
+constexpr double kKickFacing = 0.1;            // rad: a holder facing its kick this well kicks (behind_ball_facing)
 
 double sign_or_one(double v) { return v < 0 ? -1.0 : 1.0; }
 
@@ -194,6 +200,25 @@ MotionIntent role_default(const Situation& s, const wm::RobotState& robot, const
   return as_role(open_space(s, robot, {.anchor = slot.anchor, .radius = 0.8}), Role::kMidfieldSupport, "support");
 }
 
+/// True when the ball lies at `robot`'s dribbler, in front of it.
+bool holds_ball(const Situation& s, const wm::RobotState& robot) {
+  const Vec2 to_ball = s.ball - robot.position;
+  const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
+  return to_ball.norm() < dribbler_distance(s) + kHoldContact &&
+         geom::normalized_or(to_ball, heading).dot(heading) > std::cos(kHoldAngle);
+}
+
+/// `kick` (a pass, shot or clearance along `u`) by a robot that holds the ball: it first turns with the ball
+/// on its dribbler until it faces `u` (going round the ball would hand it to a nearby opponent).
+MotionIntent kick_from_dribbler(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent kick) {
+  const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
+  if (!holds_ball(s, robot) || heading.dot(u) > std::cos(kKickFacing)) return kick;
+  MotionIntent turn = turn_with_ball(s, robot, {.orientation = geom::angle_of(u).radians()});
+  turn.role = kick.role;
+  turn.tactic = kick.tactic;
+  return turn;
+}
+
 }  // namespace
 
 double shot_quality(const Situation& s, const Vec2& from, std::optional<std::uint32_t> shooter) {
@@ -209,9 +234,12 @@ std::optional<PassOption> rate_pass(const Situation& s, std::uint32_t receiver, 
   const Vec2 line = point - s.ball;
   const double length = line.norm();
   if (length < params.min_pass || length > params.max_pass) return std::nullopt;
+  // Never back to the front of our defense area: a pass lost there is a chance for them in front of our goal.
+  if (line.x() < 0 && s.field.in_our_defense_area(point, kBackPassAreaClearance)) return std::nullopt;
   const Vec2 u = line / length;
   double margin = 1e9;
   double open = M_PI;
+  double lane = 1e9;  // m between the nearest opponent body and the ball's path
   for (const wm::RobotState& enemy : s.enemies) {
     // Where it is once it reacts (it keeps going meanwhile), then from standing to the line's nearest point.
     const Vec2 start = enemy.position + enemy.velocity * params.opponent_reaction;
@@ -225,8 +253,13 @@ std::optional<PassOption> rate_pass(const Situation& s, std::uint32_t receiver, 
     if (to_enemy.dot(u) > 0 && to_enemy.norm() < length + 0.3) {
       open = std::min(open, std::abs(std::atan2(geom::cross(u, to_enemy), u.dot(to_enemy))));
     }
+    const Vec2 from_ball = enemy.position - s.ball;
+    const Vec2 on_path = s.ball + u * std::clamp(from_ball.dot(u), 0.0, length);
+    lane = std::min(lane, (enemy.position - on_path).norm() - reach);
   }
-  if (margin < params.min_margin || open < params.min_open_angle) return std::nullopt;
+  if (margin < params.min_margin || open < params.min_open_angle || lane < params.min_lane_clearance) {
+    return std::nullopt;
+  }
   option.margin = margin;
   option.open_angle = open;
   option.progress = line.x();
@@ -239,9 +272,11 @@ std::vector<PassOption> rate_passes(const Situation& s, std::uint32_t passer, co
   std::vector<PassOption> options;
   for (const wm::RobotState& mate : s.robots) {
     if (mate.id == passer || (s.keeper && mate.id == *s.keeper)) continue;
-    // A receiver next to their defense area takes the ball a step back from it: a ball it does not stop at
-    // once would roll into the area, where nobody of ours may play it.
-    Vec2 point = mate.position;
+    // The ball goes where the receiver can stand still to take it: a running teammate's stopping point (it
+    // cannot turn round in time to meet a ball played to where it was). A receiver next to their defense area
+    // takes the ball a step back from it: a ball it does not stop at once would roll into the area, where
+    // nobody of ours may play it.
+    Vec2 point = mate.position + mate.velocity * (mate.velocity.norm() / (2 * s.config->limits.max_acceleration));
     const double front = s.field.half_length() - s.field.size().penalty_area_depth - kPassAreaClearance;
     if (s.field.in_their_defense_area(point, kPassAreaClearance)) point.x() = std::min(point.x(), front);
     if (auto option = rate_pass(s, mate.id, point, params)) options.push_back(*option);
@@ -353,6 +388,7 @@ bool pass_in_progress(const Situation& s, TeamPlayMemory& m) {
       TeamPlayParams keep = params;  // hysteresis: a pass once chosen stays while it is still possible at all
       keep.min_margin = params.keep_margin;
       keep.min_open_angle = 0;
+      keep.min_lane_clearance = 0;  // called off once an opponent stands in the ball's path
       keep.min_pass = 0;  // the ball moves at the passer's feet: the pass's length is not the question now
       keep.max_pass = params.max_pass + 1.0;
       if (!rate_pass(s, pass.receiver, pass.point, keep)) return end();
@@ -360,16 +396,20 @@ bool pass_in_progress(const Situation& s, TeamPlayMemory& m) {
   }
   if (pass.phase == PassIntent::Phase::kInFlight) {
     const double to_receiver = (s.ball - receiver->position).norm();
-    if (to_receiver < kTaken + s.config->robot_radius) {
+    if (to_receiver < kTaken + dribbler_distance(s)) {
       return end();  // taken: the receiver, now nearest the ball, is the next attacker
     }
     const bool dead = speed < kLostSpeed && to_receiver > kLostDistance;
+    // Deflected (off a robot of either team): the ball no longer runs towards the pass's point.
+    const Vec2 to_point = pass.point - s.ball;
+    const bool deflected = speed > kLostSpeed && to_point.norm() > kLostDistance &&
+                           s.ball_velocity.dot(to_point) < speed * to_point.norm() * std::cos(kDeflectedAngle);
     const bool late = s.now - pass.since > params.flight_timeout;
     const double touch = s.config->robot_radius + s.field.size().ball_radius + 0.01;
     const bool intercepted = std::any_of(s.enemies.begin(), s.enemies.end(), [&](const wm::RobotState& enemy) {
       return (enemy.position - s.ball).norm() < touch;
     });
-    if (dead || late || intercepted) return end();
+    if (dead || late || intercepted || deflected) return end();
   }
   return true;
 }
@@ -378,9 +418,11 @@ void pass_ball(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
   if (!m.pass || m.pass->phase != PassIntent::Phase::kSetUp) return;
   const wm::RobotState* passer = find_robot(s, m.pass->passer);
   if (!passer) return;
+  const MotionIntent kick =
+      as_role(pass(s, *passer, {.receiver = m.pass->point, .arrival_speed = m.params.arrival_speed}), Role::kAttacker,
+              "pass");
   write_intent(s, out, passer->id,
-               as_role(pass(s, *passer, {.receiver = m.pass->point, .arrival_speed = m.params.arrival_speed}),
-                       Role::kAttacker, "pass"));
+               kick_from_dribbler(s, *passer, geom::normalized_or(m.pass->point - s.ball, Vec2(1, 0)), kick));
 }
 
 void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
@@ -389,6 +431,73 @@ void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
   if (!receiver) return;
   write_intent(s, out, receiver->id,
                as_role(receive(s, *receiver, {.point = m.pass->point}), Role::kReceiver, "pass"));
+}
+
+namespace {
+
+void start_pass(const Situation& s, TeamPlayMemory& m, std::uint32_t passer, const PassOption& option,
+                TeamIntents& out) {
+  m.pass = PassIntent{.passer = passer,
+                      .receiver = option.receiver,
+                      .point = option.point,
+                      .phase = PassIntent::Phase::kSetUp,
+                      .since = s.now};
+  m.role_of[option.receiver] = Role::kReceiver;
+  pass_ball(s, m, out);
+  receive_pass(s, m, out);
+}
+
+}  // namespace
+
+void hold_ball(const Situation& s, TeamPlayMemory& m, const wm::RobotState& robot, TeamIntents& out) {
+  if (!holds_ball(s, robot)) {
+    // Gently onto a lying ball; a rolling one is caught up with.
+    MotionIntent intent = go_to_ball(s, robot, {.final_speed = kHoldApproachSpeed + s.ball_velocity.norm()});
+    write_intent(s, out, robot.id, as_role(intent, Role::kAttacker, "hold"));
+    return;
+  }
+  const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
+  const auto off_heading = [&](const Vec2& point) {
+    const Vec2 u = geom::normalized_or(point - s.ball, heading);
+    return std::acos(std::clamp(u.dot(heading), -1.0, 1.0));
+  };
+  // A pass that rates now goes once the holder faces it; the one it faces best (the quickest to play) is
+  // turned towards meanwhile.
+  const std::vector<PassOption> open = rate_passes(s, robot.id, m.params);
+  const PassOption* best = nullptr;
+  for (const PassOption& option : open) {
+    if (!best || off_heading(option.point) < off_heading(best->point)) best = &option;
+  }
+  if (best && off_heading(best->point) <= m.params.hold_pass_turn) {
+    start_pass(s, m, robot.id, *best, out);
+    return;
+  }
+  // Nothing open: turn towards the teammate nearest to being open (the pass rated with every safety margin
+  // relaxed), or else the robot's back to the nearest opponent, shielding the ball.
+  Vec2 face = heading;
+  if (best) {
+    face = best->point - s.ball;
+  } else {
+    TeamPlayParams relaxed = m.params;
+    relaxed.min_margin = -1e9;
+    relaxed.min_open_angle = 0;
+    relaxed.min_lane_clearance = -1e9;
+    const std::vector<PassOption> near_open = rate_passes(s, robot.id, relaxed);
+    const wm::RobotState* nearest = nullptr;
+    for (const wm::RobotState& enemy : s.enemies) {
+      if (!nearest || (enemy.position - s.ball).norm() < (nearest->position - s.ball).norm()) nearest = &enemy;
+    }
+    if (!near_open.empty()) {
+      const auto safest = std::max_element(near_open.begin(), near_open.end(), [](const PassOption& a, const PassOption& b) {
+        return a.margin < b.margin;
+      });
+      face = safest->point - s.ball;
+    } else if (nearest) {
+      face = s.ball - nearest->position;
+    }
+  }
+  const MotionIntent intent = turn_with_ball(s, robot, {.orientation = geom::angle_of(face).radians()});
+  write_intent(s, out, robot.id, as_role(intent, Role::kAttacker, "hold"));
 }
 
 void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamIntents& out) {
@@ -414,6 +523,11 @@ void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamI
     return;
   }
   const bool at_ball = (robot->position - s.ball).norm() < 0.5;
+  const bool building_up = m.style == Style::kBuildUpAttack || m.style == Style::kHoldPossession;
+  if (at_ball && building_up && quality < params.hold_below && s.possession != wm::Possession::kEnemy) {
+    hold_ball(s, m, *robot, out);
+    return;
+  }
   if (at_ball && quality < params.shoot_quality && s.possession != wm::Possession::kEnemy) {
     std::vector<PassOption> options = rate_passes(s, attacker, params);
     // Turning round the ball takes the time opponents need to close the line: passes the way the attacker
@@ -427,18 +541,13 @@ void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamI
       return a.score != b.score ? a.score > b.score : a.receiver < b.receiver;
     });
     if (!options.empty() && options.front().score > quality + params.pass_advantage) {
-      m.pass = PassIntent{.passer = attacker,
-                          .receiver = options.front().receiver,
-                          .point = options.front().point,
-                          .phase = PassIntent::Phase::kSetUp,
-                          .since = s.now};
-      m.role_of[options.front().receiver] = Role::kReceiver;
-      pass_ball(s, m, out);
-      receive_pass(s, m, out);
+      start_pass(s, m, attacker, options.front(), out);
       return;
     }
   }
-  write_intent(s, out, attacker, as_role(shoot(s, *robot, {}), Role::kAttacker, "attack"));
+  const Vec2 aim = geom::normalized_or(shot_target(s, attacker) - s.ball, Vec2(1, 0));
+  write_intent(s, out, attacker,
+               kick_from_dribbler(s, *robot, aim, as_role(shoot(s, *robot, {}), Role::kAttacker, "attack")));
 }
 
 }  // namespace ssl::planner

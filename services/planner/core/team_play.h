@@ -46,6 +46,7 @@ struct TeamPlayParams {
   double min_margin = 0.2;           // s the ball must be ahead of every opponent along its line
   double keep_margin = -0.1;         // s: a pass being set up is called off below this (hysteresis)
   double min_open_angle = 0.17;      // rad (10 degrees)
+  double min_lane_clearance = 0.1;   // m between every opponent's body and the ball's path (as it stands now)
   double opponent_speed = 2.5;       // m/s an opponent reaches the line at, at most
   double opponent_acceleration = 3.0;  // m/s^2 it gets there with, from standing
   double opponent_reaction = 0.2;    // s before it turns towards the ball's line (it drifts meanwhile)
@@ -55,6 +56,8 @@ struct TeamPlayParams {
   double set_up_timeout = 2.5;       // s for the passer to kick
   double flight_timeout = 3.5;       // s for the ball to reach the receiver
   double contested_distance = 0.4;   // m, opponent centre to ball: the ball is challenged, not shot
+  double hold_below = 0.45;          // building up, a shot worse than this is not taken: the ball is kept
+  double hold_pass_turn = 0.3;       // rad: a held ball is passed once the holder faces the pass this well
 };
 
 /// What the team's strategy remembers between ticks (the blackboard of seeds/001).
@@ -79,8 +82,9 @@ struct TeamPlayMemory {
 double shot_quality(const Situation& s, const Vec2& from, std::optional<std::uint32_t> shooter = std::nullopt);
 
 /// Every teammate of `passer` (not the keeper) that a pass from the ball can reach, best first. Rejected:
-/// shorter than min_pass or longer than max_pass, an opponent that could reach the ball's line before the
-/// ball (min_margin), or stands within min_open_angle of it in front of the receiver. Score: the receiver's
+/// shorter than min_pass or longer than max_pass, back to within 1 m of our defense area, an opponent that could reach the ball's line before the
+/// ball (min_margin), stands within min_open_angle of it in front of the receiver or within
+/// min_lane_clearance of the ball's path. Score: the receiver's
 /// shot quality, progress towards their goal and the margin.
 std::vector<PassOption> rate_passes(const Situation& s, std::uint32_t passer, const TeamPlayParams& params = {});
 /// One pass from the ball to `point` for `receiver`, rated as rate_passes does; nullopt when rejected.
@@ -99,7 +103,12 @@ bool pass_in_progress(const Situation& s, TeamPlayMemory& m);
 void pass_ball(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 /// The attacker in the coach's style: shoots when the shot is good, starts a pass when one is clearly
-/// better, clears in a clearance, challenges the carrier when they have the ball.
+/// better, clears in a clearance, challenges the carrier when they have the ball. Building up or holding
+/// possession with a shot that would give the ball away (below hold_below), it keeps the ball on its
+/// dribbler instead, turned towards the most nearly open teammate (or its back to the nearest opponent),
+/// and passes to any teammate a pass rates for once it faces the pass.
 void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamIntents& out);
+/// The attacker keeping the ball (see attack): takes it on its dribbler, turns, passes.
+void hold_ball(const Situation& s, TeamPlayMemory& m, const wm::RobotState& robot, TeamIntents& out);
 
 }  // namespace ssl::planner

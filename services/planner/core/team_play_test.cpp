@@ -147,9 +147,12 @@ TEST(TeamPlay, EveryMarkerMarksADifferentOpponentAndDefendersBlockTheLanesGoalSi
 }
 
 TEST(TeamPlay, AnAttackerWithAPoorShotStartsAPassAndItsReceiverWaitsForIt) {
+  // Building up (the ball in midfield, ours), the attacker holds the ball facing its open teammate.
   Scene scene({1.0, 2.5});
   scene.s.possession = wm::Possession::kFriendly;
-  scene.robots = {robot_at({0.8, 2.5}, 0, 1), robot_at({3.0, 0.0}, 0, 2)};
+  const Vec2 to_mate = Vec2(Vec2(3.0, 0.0) - Vec2(1.0, 2.5)).normalized();
+  const double facing = std::atan2(to_mate.y(), to_mate.x());
+  scene.robots = {robot_at(Vec2(Vec2(1.0, 2.5) - to_mate * 0.12), facing, 1), robot_at({3.0, 0.0}, 0, 2)};
   TeamPlayMemory memory;
   TeamIntents out;
   read_game(scene.situation(), memory);
@@ -165,6 +168,23 @@ TEST(TeamPlay, AnAttackerWithAPoorShotStartsAPassAndItsReceiverWaitsForIt) {
   scene.s.now = 3.0;
   EXPECT_FALSE(pass_in_progress(scene.situation(), memory));
   EXPECT_FALSE(memory.pass);
+}
+
+TEST(TeamPlay, AHolderFacingAwayFromItsOpenTeammateTurnsWithTheBallBeforePassing) {
+  Scene scene({1.0, 2.5});
+  scene.s.possession = wm::Possession::kFriendly;
+  scene.robots = {robot_at({1.0 - 0.12, 2.5}, 0.0, 1), robot_at({3.0, 0.0}, 0, 2)};  // facing +x, 51 degrees off
+  TeamPlayMemory memory;
+  TeamIntents out;
+  read_game(scene.situation(), memory);
+  const std::optional<std::uint32_t> attacker = assign_roles(scene.situation(), memory, out);
+  ASSERT_EQ(attacker, 1u);
+  attack(scene.situation(), memory, *attacker, out);
+  EXPECT_FALSE(memory.pass);
+  EXPECT_EQ(out.robots[1].tactic, "hold");
+  EXPECT_EQ(out.robots[1].skill, "turn_with_ball");
+  EXPECT_TRUE(out.robots[1].dribble);
+  EXPECT_NEAR(out.robots[1].orientation, std::atan2(-2.5, 2.0), 1e-6);  // towards the teammate
 }
 
 TEST(StableAssigner, GivenCostsAreAssignedOptimallyAndKeptUnlessClearlyCheaper) {

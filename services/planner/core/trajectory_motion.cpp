@@ -10,6 +10,9 @@
 namespace ssl::planner {
 namespace {
 
+constexpr double kStraightAway = 0.7;   // cos of the angle off straight away a robot counted on to go on runs at
+
+
 constexpr double kArrived = 0.005;              // m: closer to the target than this, at rest, is there
 constexpr int kFreeTargetPasses = 3;            // moves of the target out of robots standing on it
 // m beyond a robot obstacle's radius for a moved target: the sweep grows obstacles by its chord margin
@@ -142,7 +145,11 @@ Vec2 TrajectoryMotionPlanner::guarded(const wm::RobotState& robot, Vec2 velocity
     // Largest v with v * tau + v^2 / (2 a) <= our share: half the gap (the other robot may come towards us
     // doing the same), plus the way a robot moving away at w still goes when it brakes as hard as a robot
     // can (w^2 / (2 b)).
-    const double away = std::max(0.0, other.velocity.dot(toward));
+    // Only a robot running (nearly) straight away is counted on to go on: one crossing our way can turn
+    // towards us instead of braking.
+    const double other_speed = other.velocity.norm();
+    const double along = other.velocity.dot(toward);
+    const double away = along > other_speed * kStraightAway ? along : 0.0;
     const double share =
         std::max(0.0, distance - touching) / 2 + away * away / (2 * params_.guard_other_braking);
     const double allowed = stopping_speed(share, a, tau);
