@@ -146,6 +146,17 @@ TEST(TeamPlay, EveryMarkerMarksADifferentOpponentAndDefendersBlockTheLanesGoalSi
   EXPECT_EQ(defenders, 2);
 }
 
+/// One strategy tick up to the attacker's play: the game read, the roles assigned (robot 1 the attacker), the
+/// attacker's play.
+TeamIntents attacker_plays(Scene& scene, TeamPlayMemory& memory) {
+  TeamIntents out;
+  read_game(scene.situation(), memory);
+  const std::optional<std::uint32_t> attacker = assign_roles(scene.situation(), memory, out);
+  EXPECT_EQ(attacker, 1u);
+  if (attacker) attack(scene.situation(), memory, *attacker, out);
+  return out;
+}
+
 TEST(TeamPlay, AnAttackerWithAPoorShotStartsAPassAndItsReceiverWaitsForIt) {
   // Building up (the ball in midfield, ours), the attacker holds the ball facing its open teammate.
   Scene scene({1.0, 2.5});
@@ -154,11 +165,7 @@ TEST(TeamPlay, AnAttackerWithAPoorShotStartsAPassAndItsReceiverWaitsForIt) {
   const double facing = std::atan2(to_mate.y(), to_mate.x());
   scene.robots = {robot_at(Vec2(Vec2(1.0, 2.5) - to_mate * 0.12), facing, 1), robot_at({3.0, 0.0}, 0, 2)};
   TeamPlayMemory memory;
-  TeamIntents out;
-  read_game(scene.situation(), memory);
-  const std::optional<std::uint32_t> attacker = assign_roles(scene.situation(), memory, out);
-  ASSERT_EQ(attacker, 1u);
-  attack(scene.situation(), memory, *attacker, out);
+  const TeamIntents out = attacker_plays(scene, memory);
   ASSERT_TRUE(memory.pass);
   EXPECT_EQ(memory.pass->receiver, 2u);
   EXPECT_EQ(out.robots[1].tactic, "pass");
@@ -175,11 +182,7 @@ TEST(TeamPlay, AHolderFacingAwayFromItsOpenTeammateTurnsWithTheBallBeforePassing
   scene.s.possession = wm::Possession::kFriendly;
   scene.robots = {robot_at({1.0 - 0.12, 2.5}, 0.0, 1), robot_at({3.0, 0.0}, 0, 2)};  // facing +x, 51 degrees off
   TeamPlayMemory memory;
-  TeamIntents out;
-  read_game(scene.situation(), memory);
-  const std::optional<std::uint32_t> attacker = assign_roles(scene.situation(), memory, out);
-  ASSERT_EQ(attacker, 1u);
-  attack(scene.situation(), memory, *attacker, out);
+  const TeamIntents out = attacker_plays(scene, memory);
   EXPECT_FALSE(memory.pass);
   EXPECT_EQ(out.robots[1].tactic, "hold");
   EXPECT_EQ(out.robots[1].skill, "turn_with_ball");
