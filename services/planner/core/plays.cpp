@@ -537,7 +537,7 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
     const double dd = dribbler_distance(s);
     const Vec2 heading = geom::Angle::from_radians(placer->orientation).to_unit_vector();
     const Vec2 rel = placer->position - s.ball;
-    const bool holds_ball = rel.norm() < dd + 0.04 && (-rel).normalized().dot(heading) > std::cos(0.35);
+    const bool held = holds_ball(s, *placer);
     const double ball_error = (s.ball - target).norm();
     const PullBackParams pull;
     const Vec2 u = geom::normalized_or(target - s.ball, heading);
@@ -548,7 +548,7 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
         // A ball already on the target (placed by the simulator, or left there) is not touched again.
         if (ball_error < s.config->placement_tolerance * 0.5) {
           memory.place_phase = P::kRelease;
-        } else if (holds_ball && from_behind) {
+        } else if (held && from_behind) {
           memory.place_phase = P::kCarry;
         } else if (!from_behind && rel.norm() < dd - 0.005 && (-rel).normalized().dot(heading) > std::cos(0.35)) {
           memory.place_phase = P::kPullBack;  // pressed against the ball: the dribbler holds it
@@ -564,7 +564,7 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
       case P::kCarry:
         if (ball_error < 0.04) {
           memory.place_phase = P::kRelease;
-        } else if (!holds_ball && rel.norm() > dd + 0.1) {
+        } else if (!held && rel.norm() > dd + 0.1) {
           memory.place_phase = P::kApproach;
         }
         break;

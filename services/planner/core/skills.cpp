@@ -31,6 +31,8 @@ constexpr double kPostAim = 0.06;
 constexpr double kAreaTouchClearance = 0.02;
 /// m: a slow ball this close to the receiving point is fetched by the receiver.
 constexpr double kTakeNearPoint = 1.0;
+constexpr double kHoldContact = 0.04;  // m beyond touching: the ball is at the dribbler (holds_ball)
+constexpr double kHoldAngle = 0.35;    // rad off the heading the held ball may lie (holds_ball)
 
 double radius(const Situation& s) { return s.config->robot_radius; }
 
@@ -163,6 +165,13 @@ bool behind_ball_facing(const Situation& s, const wm::RobotState& robot, const V
   const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
   return along < -(dd - 0.03) && along > -(dd + 0.06) && lateral < 0.03 &&
          heading.dot(u) > std::cos(max_heading_error);
+}
+
+bool holds_ball(const Situation& s, const wm::RobotState& robot) {
+  const Vec2 to_ball = s.ball - robot.position;
+  const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
+  return to_ball.norm() < dribbler_distance(s) + kHoldContact &&
+         geom::normalized_or(to_ball, heading).dot(heading) > std::cos(kHoldAngle);
 }
 
 std::optional<geom::Segment> shot_path(const Situation& s) {

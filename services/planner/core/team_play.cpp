@@ -25,8 +25,6 @@ constexpr double kPassAreaClearance = 0.5;     // m: passes are received at leas
 constexpr double kBackPassAreaClearance = 1.0;  // m: passes back are received at least this far from ours
 constexpr std::uint32_t kRoleKeyBase = 100;    // StableAssigner keys of the styles' formations
 constexpr double kStrategyGap = 0.1;           // s without a strategy tick: play was stopped in between
-constexpr double kHoldContact = 0.04;          // m beyond touching: the ball is at the dribbler
-constexpr double kHoldAngle = 0.35;            // rad off the heading the held ball may lie
 constexpr double kHoldApproachSpeed = 0.5;     // m/s faster than the ball the holder takes it with
 constexpr double kKickFacing = 0.1;            // rad: a holder facing its kick this well kicks (behind_ball_facing)
 
@@ -118,14 +116,14 @@ std::vector<const wm::RobotState*> dangerous_opponents(const Situation& s, std::
   return out;
 }
 
-/// The opponent nearest the ball (the carrier when they have it).
-std::optional<std::uint32_t> opponent_at_ball(const Situation& s) {
-  std::optional<std::uint32_t> best;
+/// The opponent nearest the ball (the carrier when they have it); nullptr when none is seen.
+const wm::RobotState* opponent_at_ball(const Situation& s) {
+  const wm::RobotState* best = nullptr;
   double best_distance = 0;
   for (const wm::RobotState& enemy : s.enemies) {
     const double d = (enemy.position - s.ball).norm();
     if (!best || d < best_distance) {
-      best = enemy.id;
+      best = &enemy;
       best_distance = d;
     }
   }
@@ -142,8 +140,9 @@ std::vector<Slot> formation_slots(const Situation& s, Style style, std::size_t c
   const double front_x = s.field.half_length() - depth - 0.4;
   const double back_x = -s.field.half_length() + depth + 0.5;
   const std::array<Vec2, 2> lanes = lane_blocks(s);
+  const wm::RobotState* carrier = pressing ? opponent_at_ball(s) : nullptr;
   const std::vector<const wm::RobotState*> dangerous =
-      dangerous_opponents(s, pressing ? opponent_at_ball(s) : std::nullopt);
+      dangerous_opponents(s, carrier ? std::optional(carrier->id) : std::nullopt);
   int wingers = 0, supports = 0, defenders = 0;
   std::size_t marked = 0;
   for (std::size_t i = 0; i < count; ++i) {
@@ -198,14 +197,6 @@ MotionIntent role_default(const Situation& s, const wm::RobotState& robot, const
       break;
   }
   return as_role(open_space(s, robot, {.anchor = slot.anchor, .radius = 0.8}), Role::kMidfieldSupport, "support");
-}
-
-/// True when the ball lies at `robot`'s dribbler, in front of it.
-bool holds_ball(const Situation& s, const wm::RobotState& robot) {
-  const Vec2 to_ball = s.ball - robot.position;
-  const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
-  return to_ball.norm() < dribbler_distance(s) + kHoldContact &&
-         geom::normalized_or(to_ball, heading).dot(heading) > std::cos(kHoldAngle);
 }
 
 /// `kick` (a pass, shot or clearance along `u`) by a robot that holds the ball: it first turns with the ball
@@ -483,16 +474,12 @@ void hold_ball(const Situation& s, TeamPlayMemory& m, const wm::RobotState& robo
     relaxed.min_open_angle = 0;
     relaxed.min_lane_clearance = -1e9;
     const std::vector<PassOption> near_open = rate_passes(s, robot.id, relaxed);
-    const wm::RobotState* nearest = nullptr;
-    for (const wm::RobotState& enemy : s.enemies) {
-      if (!nearest || (enemy.position - s.ball).norm() < (nearest->position - s.ball).norm()) nearest = &enemy;
-    }
     if (!near_open.empty()) {
       const auto safest = std::max_element(near_open.begin(), near_open.end(), [](const PassOption& a, const PassOption& b) {
         return a.margin < b.margin;
       });
       face = safest->point - s.ball;
-    } else if (nearest) {
+    } else if (const wm::RobotState* nearest = opponent_at_ball(s)) {
       face = s.ball - nearest->position;
     }
   }
