@@ -9,10 +9,11 @@
 //
 // Per pairing it prints, per strategy and per match on average: goals for / against, passes tried /
 // completed, shots / on target, possession share, kickoffs and free kicks taken and kept (the next touch a
-// teammate's, or a goal) (sslctl's PlayAccount on the ground truth, the kicker's intent from its planner's
-// skill), and every game event by type, fouls marked, "avoidable" ones (keep-out,
-// too fast in STOP, defense area, double touch, crash) counted apart. Budget (../shared/design.md): base
-// beats ball_chaser by >= 3 goals per match over 20 seeds, >= 70 % of passes completed, 0 avoidable fouls.
+// teammate's, or a goal) and the goals scored from them (no opponent touch between) (sslctl's PlayAccount
+// on the ground truth, the kicker's intent from its planner's skill), and every game event by type, fouls
+// marked, "avoidable" ones (keep-out, too fast in STOP, defense area, double touch, crash) counted apart.
+// Budget (../shared/design.md): base beats ball_chaser by >= 3 goals per match over 20 seeds, >= 70 % of
+// passes completed, 0 avoidable fouls.
 //
 //   build/bench/match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...] [--tactics]
 #include <sys/wait.h>
@@ -197,6 +198,7 @@ struct Totals {
   double passes_tried = 0, passes_completed = 0, shots = 0, on_target = 0, possession = 0, possession_all = 0;
   double passes_intercepted = 0, passes_out = 0;
   double restarts_taken = 0, restarts_kept = 0;  // kickoffs and free kicks
+  double restart_goals = 0;                       // scored with no opponent touch since the restart
   std::map<std::string, double> events;  // by type
   double fouls = 0, avoidable_fouls = 0;
   double wins = 0, draws = 0;
@@ -223,6 +225,7 @@ void add(Totals& t, const nlohmann::json& match, const char* us, const char* the
     t.passes_out += mine["play"]["passes_out"].get<double>();
     t.restarts_taken += mine["play"]["restarts_taken"].get<double>();
     t.restarts_kept += mine["play"]["restarts_kept"].get<double>();
+    t.restart_goals += mine["play"]["restart_goals"].get<double>();
   }
   if (match.contains("tactics") && match["tactics"].contains(us)) {
     for (const auto& [name, count] : match["tactics"][us].items()) t.tactics[name] += count.get<double>();
@@ -236,6 +239,18 @@ void add(Totals& t, const nlohmann::json& match, const char* us, const char* the
     if (parsed && ssl::referee::is_foul(*parsed)) t.fouls += count;
     if (parsed && ssl::referee::is_avoidable_foul(*parsed)) t.avoidable_fouls += count;
   }
+}
+
+/// The match's avoidable fouls, " !! <colour> <TYPE> xN ..." (empty without any): which seed to look at.
+std::string avoidable_fouls(const nlohmann::json& match) {
+  std::string text;
+  for (const nlohmann::json& event : match["game_events"]) {
+    const auto parsed = ssl::referee::parse_game_event_type(event["type"].get<std::string>());
+    if (!parsed || !ssl::referee::is_avoidable_foul(*parsed)) continue;
+    text += " !! " + event["team"].get<std::string>() + " " + event["type"].get<std::string>() + " x" +
+            std::to_string(event["count"].get<unsigned>());
+  }
+  return text;
 }
 
 double ratio(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0; }
@@ -272,6 +287,7 @@ void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& ma
   row("kickoffs + free kicks taken", a.restarts_taken / n, b.restarts_taken / n);
   row("  kept or scored (%)", ratio(a.restarts_kept, a.restarts_taken), ratio(b.restarts_kept, b.restarts_taken),
       "%14.0f");
+  row("  goals from them", a.restart_goals / n, b.restart_goals / n);
   row("fouls", a.fouls / n, b.fouls / n);
   row("avoidable fouls (!!)", a.avoidable_fouls / n, b.avoidable_fouls / n);
   std::set<std::string> types;
@@ -399,11 +415,11 @@ int main(int argc, char** argv) {
         }
         nlohmann::json match = nlohmann::json::parse(*line);
         const bool a_blue = match["a_is_blue"].get<bool>();
-        std::printf("  seed %3llu %s vs %s: %s %u : %u%s\n", static_cast<unsigned long long>(job.seed),
+        std::printf("  seed %3llu %s vs %s: %s %u : %u%s%s\n", static_cast<unsigned long long>(job.seed),
                     pairings[job.pairing].a.c_str(), pairings[job.pairing].b.c_str(), a_blue ? "(a blue)" : "(a yellow)",
                     match["teams"][a_blue ? "blue" : "yellow"]["score"].get<unsigned>(),
                     match["teams"][a_blue ? "yellow" : "blue"]["score"].get<unsigned>(),
-                    match["finished"].get<bool>() ? "" : " (no final whistle)");
+                    match["finished"].get<bool>() ? "" : " (no final whistle)", avoidable_fouls(match).c_str());
         std::fflush(stdout);
         results[job.pairing].push_back(std::move(match));
       }

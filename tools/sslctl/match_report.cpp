@@ -202,10 +202,10 @@ std::string to_text(const MatchReport& r) {
       char text[256];
       std::snprintf(text, sizeof text,
                     "play %s: passes %u tried, %u completed (%.0f %%), %u intercepted, %u out; shots %u, %u on "
-                    "target; kicks %u; possession %.0f %%; restarts %u taken, %u kept\n",
+                    "target; kicks %u; possession %.0f %%; restarts %u taken, %u kept, %u goals from them\n",
                     name, p.passes_tried, p.passes_completed, percent(p.passes_completed, p.passes_tried),
                     p.passes_intercepted, p.passes_out, p.shots, p.shots_on_target, p.kicks,
-                    percent(p.possession, possessed), p.restarts_taken, p.restarts_kept);
+                    percent(p.possession, possessed), p.restarts_taken, p.restarts_kept, p.restart_goals);
       out << text;
     }
   }
@@ -241,7 +241,8 @@ std::string to_json(const MatchReport& r) {
                                    {"passes_intercepted", p.passes_intercepted}, {"passes_out", p.passes_out},
                                    {"shots", p.shots},               {"shots_on_target", p.shots_on_target},
                                    {"kicks", p.kicks},               {"possession_s", p.possession},
-                                   {"restarts_taken", p.restarts_taken}, {"restarts_kept", p.restarts_kept}};
+                                   {"restarts_taken", p.restarts_taken}, {"restarts_kept", p.restarts_kept},
+                                   {"restart_goals", p.restart_goals}};
     }
   }
   out["goals"] = json::array();

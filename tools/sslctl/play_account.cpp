@@ -15,6 +15,7 @@ void PlayAccount::on_referee(bool in_play, std::optional<bool> blue_on_positive_
     if (open_pass_) ++team_of(open_pass_->team).passes_out;  // play stopped before anybody took the pass
     open_pass_.reset();
     open_restart_.reset();  // or the restart: not kept (unless on_goal came first)
+    restart_move_.reset();
     possession_.reset();
     last_toucher_id_.reset();
     last_toucher_team_.reset();
@@ -54,6 +55,7 @@ void PlayAccount::on_frame(const geom::Vec2& ball, std::span<const Robot> robots
       const bool kicker_still = open_pass_ && nearest->team == open_pass_->team && nearest->id == open_pass_->kicker &&
                                 last_toucher_id_ == nearest->id && last_toucher_team_ == nearest->team;
       if (!(last_toucher_id_ == nearest->id && last_toucher_team_ == nearest->team)) settle_restart(*nearest);
+      if (restart_move_ != nearest->team) restart_move_.reset();
       if (open_pass_ && !kicker_still) {
         if (nearest->team == open_pass_->team && nearest->id != open_pass_->kicker) {
           ++team_of(open_pass_->team).passes_completed;
@@ -79,7 +81,9 @@ void PlayAccount::on_frame(const geom::Vec2& ball, std::span<const Robot> robots
 
 void PlayAccount::on_goal(TeamColor team) {
   if (open_restart_ && open_restart_->taker && open_restart_->team == team) ++team_of(team).restarts_kept;
+  if (restart_move_ == team) ++team_of(team).restart_goals;
   open_restart_.reset();
+  restart_move_.reset();
 }
 
 void PlayAccount::settle_restart(const Robot& robot) {
@@ -88,6 +92,7 @@ void PlayAccount::settle_restart(const Robot& robot) {
     // The first touch: the restart's taker, or the other team got there first (nothing taken).
     if (robot.team == open_restart_->team) {
       open_restart_->taker = robot.id;
+      restart_move_ = robot.team;
       ++team_of(robot.team).restarts_taken;
     } else {
       open_restart_.reset();
@@ -101,6 +106,7 @@ void PlayAccount::settle_restart(const Robot& robot) {
 
 void PlayAccount::on_kick(const Robot& kicker, const geom::Vec2& ball, const geom::Vec2& velocity) {
   if (!(last_toucher_id_ == kicker.id && last_toucher_team_ == kicker.team)) settle_restart(kicker);
+  if (restart_move_ != kicker.team) restart_move_.reset();
   TeamPlay& play = team_of(kicker.team);
   ++play.kicks;
   possession_ = kicker.team;

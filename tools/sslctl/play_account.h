@@ -43,6 +43,7 @@ struct TeamPlay {
   std::uint32_t kicks = 0;        // every kick in play (passes, shots, clearances)
   std::uint32_t restarts_taken = 0;  // kickoffs and free kicks
   std::uint32_t restarts_kept = 0;   // of those: a teammate touched the ball next, or the team scored
+  std::uint32_t restart_goals = 0;   // goals with no opponent touch since the team took its restart
   double possession = 0;          // s in play with this team's robot the last to touch the ball
 };
 
@@ -108,6 +109,7 @@ class PlayAccount {
   std::optional<TeamColor> possession_;
   std::optional<OpenPass> open_pass_;
   std::optional<OpenRestart> open_restart_;
+  std::optional<TeamColor> restart_move_;  // took its restart and no opponent touched the ball since
   std::optional<TeamColor> restart_team_;  // as last told by on_referee
   std::optional<std::uint32_t> last_toucher_id_;
   std::optional<TeamColor> last_toucher_team_;

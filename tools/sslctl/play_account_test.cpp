@@ -172,6 +172,18 @@ TEST_F(PlayAccountTest, ARestartThatScoresIsKeptAndOneThatGoesOutIsNot) {
   account_.on_referee(false, false);
   EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_taken, 2u);
   EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_kept, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).restart_goals, 1u);
+}
+
+TEST_F(PlayAccountTest, AGoalAfterTheOpponentsTouchedTheRestartsBallIsNotAGoalFromTheRestart) {
+  account_.on_referee(false, false);
+  account_.on_referee(true, false, TeamColor::kBlue);
+  roll({0.1, 0}, {0, 0}, 0.3);
+  const Vec2 at = roll({0.1, 0}, Vec2(0.9, -1.0).normalized() * 3, 0.42);  // straight at yellow 1
+  roll(at, {0, 0}, 0.3);
+  account_.on_goal(TeamColor::kBlue);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_taken, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).restart_goals, 0u);
 }
 
 }  // namespace
