@@ -55,7 +55,6 @@ void PlayAccount::on_frame(const geom::Vec2& ball, std::span<const Robot> robots
       const bool kicker_still = open_pass_ && nearest->team == open_pass_->team && nearest->id == open_pass_->kicker &&
                                 last_toucher_id_ == nearest->id && last_toucher_team_ == nearest->team;
       if (!(last_toucher_id_ == nearest->id && last_toucher_team_ == nearest->team)) settle_restart(*nearest);
-      if (restart_move_ != nearest->team) restart_move_.reset();
       if (open_pass_ && !kicker_still) {
         if (nearest->team == open_pass_->team && nearest->id != open_pass_->kicker) {
           ++team_of(open_pass_->team).passes_completed;
@@ -87,6 +86,7 @@ void PlayAccount::on_goal(TeamColor team) {
 }
 
 void PlayAccount::settle_restart(const Robot& robot) {
+  if (restart_move_ != robot.team) restart_move_.reset();  // an opponent's touch ends the restart's move
   if (!open_restart_) return;
   if (!open_restart_->taker) {
     // The first touch: the restart's taker, or the other team got there first (nothing taken).
@@ -106,7 +106,6 @@ void PlayAccount::settle_restart(const Robot& robot) {
 
 void PlayAccount::on_kick(const Robot& kicker, const geom::Vec2& ball, const geom::Vec2& velocity) {
   if (!(last_toucher_id_ == kicker.id && last_toucher_team_ == kicker.team)) settle_restart(kicker);
-  if (restart_move_ != kicker.team) restart_move_.reset();
   TeamPlay& play = team_of(kicker.team);
   ++play.kicks;
   possession_ = kicker.team;

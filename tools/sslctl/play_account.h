@@ -92,7 +92,8 @@ class PlayAccount {
     std::optional<std::uint32_t> taker;  // once taken
   };
   void on_kick(const Robot& kicker, const geom::Vec2& ball, const geom::Vec2& velocity);
-  /// A touch (or kick) by `robot` while a restart is open: takes or settles it.
+  /// A touch (or kick) by a robot other than the last toucher: takes or settles an open restart, and ends
+  /// the move of a taken one when the robot is an opponent.
   void settle_restart(const Robot& robot);
   bool is_shot(TeamColor team, const geom::Vec2& ball, const geom::Vec2& velocity, bool& on_target) const;
 
