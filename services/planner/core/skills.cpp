@@ -92,11 +92,16 @@ MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const V
     const Vec2 contact = s.ball - u * dribbler_distance(s);
     if (!s.field.in_their_defense_area(contact, radius(s) + kAreaTouchClearance)) {
       intent.avoid_their_defense_area = false;
-      // The robot stops wholly outside the area: a ball coming back off their keeper or the goal touches a
-      // robot standing partly inside (a foul).
+      // The robot stops wholly outside the area (with the touch clearance): a ball coming back off their
+      // keeper or the goal touches a robot standing partly inside (a foul). A ball on the area's edge is
+      // kicked from the contact point, never driven into.
+      const double contact_through = -dribbler_distance(s);
       double through = (intent.target - s.ball).norm();
-      while (through > 0 && s.field.in_their_defense_area(s.ball + u * through, radius(s))) through -= 0.01;
-      intent.target = s.ball + u * std::max(through, 0.0);
+      while (through > contact_through &&
+             s.field.in_their_defense_area(s.ball + u * through, radius(s) + kAreaTouchClearance)) {
+        through -= 0.01;
+      }
+      intent.target = s.ball + u * std::max(through, contact_through);
     }
   } else {
     approach_ball(s, robot, u, intent);

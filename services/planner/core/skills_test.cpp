@@ -131,6 +131,22 @@ TEST(Skills, ShootAimsInsideThePostOfTheWidestOpenPartOfTheGoal) {
   EXPECT_NEAR(shot_target(empty.situation()).y(), 0.0, 1e-9);
 }
 
+TEST(Skills, AShotAtABallOnTheEdgeOfTheirDefenseAreaStopsWhollyOutsideIt) {
+  // Division B: their defense area begins at x = 3.5. The ball lies 2 cm before it, the shooter behind it
+  // facing their goal; the kick drives through the ball but stops before any part of the robot (with the
+  // touch clearance) would stand in the area, and not beyond the ball's contact point.
+  const Vec2 ball(3.48, 0.0);
+  Scene scene(ball);
+  const wm::RobotState shooter = robot_at({ball.x() - kDribbler, 0.0}, 0.0, 1);
+  scene.robots = {shooter};
+  const MotionIntent intent = run_skill(scene.situation(), shooter, ShootParams{});
+  EXPECT_EQ(intent.kick, KickType::kFlat);
+  EXPECT_FALSE(intent.avoid_their_defense_area);
+  EXPECT_LT(intent.target.x() + scene.config.robot_radius, 3.5);
+  EXPECT_GE(intent.target.x(), ball.x() - kDribbler - 1e-9);
+  EXPECT_NEAR(intent.target.y(), 0.0, 1e-9);
+}
+
 TEST(Skills, ClearKicksAwayFromOurGoalWhereNoOpponentIs) {
   Scene scene({-3, 0});
   scene.enemies = {enemy_at({-2, 0}, 1), enemy_at({-2, 0.3}, 2)};

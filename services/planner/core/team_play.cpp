@@ -19,6 +19,8 @@ constexpr double kTaken = 0.05;                // m beyond touching, receiver to
 constexpr double kLostSpeed = 0.3;             // m/s: a pass this slow far from its receiver is dead
 constexpr double kLostDistance = 0.8;          // m
 constexpr double kDeflectedAngle = 0.6;        // rad between the ball's run and the way to the pass's point
+constexpr double kDeflectReach = 0.05;         // m beyond touching: a robot this near the ball could deflect it
+constexpr double kDeflectRecent = 0.3;         // s since a robot could have deflected the ball
 constexpr double kAttackerLead = 0.2;          // s the attacker race looks ahead along the ball's motion
 constexpr double kDefenderMisfit = 0.5;        // s added for a defender slot to a robot ahead of the ball
 constexpr double kPassAreaClearance = 0.5;     // m: passes are received at least this far from their area
@@ -391,9 +393,18 @@ bool pass_in_progress(const Situation& s, TeamPlayMemory& m) {
       return end();  // taken: the receiver, now nearest the ball, is the next attacker
     }
     const bool dead = speed < kLostSpeed && to_receiver > kLostDistance;
-    // Deflected (off a robot of either team): the ball no longer runs towards the pass's point.
+    // Deflected (off a robot of either team): a robot reached the ball a moment ago and the ball no longer
+    // runs towards the pass's point. Without the robot, a turn of the estimated velocity is noise (the
+    // estimate jumps where two cameras' views meet), not a deflection.
+    const double reach = s.config->robot_radius + s.field.size().ball_radius + kDeflectReach;
+    const auto within_reach = [&](const wm::RobotState& robot) { return (robot.position - s.ball).norm() < reach; };
+    if (std::any_of(s.robots.begin(), s.robots.end(), within_reach) ||
+        std::any_of(s.enemies.begin(), s.enemies.end(), within_reach)) {
+      pass.ball_at_robot = s.now;
+    }
+    const bool touched = pass.ball_at_robot && s.now - *pass.ball_at_robot < kDeflectRecent;
     const Vec2 to_point = pass.point - s.ball;
-    const bool deflected = speed > kLostSpeed && to_point.norm() > kLostDistance &&
+    const bool deflected = touched && speed > kLostSpeed && to_point.norm() > kLostDistance &&
                            s.ball_velocity.dot(to_point) < speed * to_point.norm() * std::cos(kDeflectedAngle);
     const bool late = s.now - pass.since > params.flight_timeout;
     const double touch = s.config->robot_radius + s.field.size().ball_radius + 0.01;

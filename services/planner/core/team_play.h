@@ -26,6 +26,7 @@ struct PassIntent {
   Phase phase = Phase::kSetUp;
   double since = 0;  // s (Situation::now) the phase began
   std::optional<double> ball_at_passer;  // s the ball last touched the passer's dribbler (set-up)
+  std::optional<double> ball_at_robot;   // s the ball was last within reach of any robot (in flight)
 };
 
 /// A teammate rated as the receiver of a pass from the ball.

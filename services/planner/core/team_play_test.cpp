@@ -177,6 +177,34 @@ TEST(TeamPlay, AnAttackerWithAPoorShotStartsAPassAndItsReceiverWaitsForIt) {
   EXPECT_FALSE(memory.pass);
 }
 
+TEST(TeamPlay, APassInFlightIsJudgedDeflectedOnlyAfterARobotReachedTheBall) {
+  // A pass from robot 1 at (0, 0) to robot 2 at (3, 0), 1 m on its way.
+  Scene scene({1.0, 0.0});
+  scene.robots = {robot_at({0.0, 0.0}, 0, 1), robot_at({3.0, 0.0}, M_PI, 2)};
+  scene.enemies = {robot_at({1.0, 1.5}, 0, 7)};
+  TeamPlayMemory memory;
+  memory.pass = PassIntent{.passer = 1, .receiver = 2, .point = {3.0, 0.0}, .phase = PassIntent::Phase::kInFlight};
+  scene.s.ball_velocity = {2.0, 0.0};
+  scene.s.now = 0.1;
+  EXPECT_TRUE(pass_in_progress(scene.situation(), memory));
+  // The estimate turns 45 degrees with no robot near the ball (a camera seam): still the same pass.
+  scene.s.ball_velocity = {1.5, 1.5};
+  scene.s.now = 0.2;
+  EXPECT_TRUE(pass_in_progress(scene.situation(), memory));
+  // The opponent reaches the ball's line just short of touching it (within 5 cm) ...
+  scene.s.ball_velocity = {2.0, 0.0};
+  scene.enemies = {robot_at({1.0, scene.config.robot_radius + scene.s.field.size().ball_radius + 0.04}, 0, 7)};
+  scene.s.now = 0.3;
+  EXPECT_TRUE(pass_in_progress(scene.situation(), memory));
+  // ... and the ball runs off the line a moment later: deflected, the pass is over.
+  scene.enemies = {robot_at({1.0, 1.0}, 0, 7)};
+  scene.s.ball = {1.2, -0.1};
+  scene.s.ball_velocity = {1.0, -1.5};
+  scene.s.now = 0.5;
+  EXPECT_FALSE(pass_in_progress(scene.situation(), memory));
+  EXPECT_FALSE(memory.pass);
+}
+
 TEST(TeamPlay, AHolderFacingAwayFromItsOpenTeammateTurnsWithTheBallBeforePassing) {
   Scene scene({1.0, 2.5});
   scene.s.possession = wm::Possession::kFriendly;
