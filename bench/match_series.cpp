@@ -41,16 +41,25 @@
 namespace {
 
 using ssl::TeamColor;
+using ssl::planner::FreeKickPlay;
 using ssl::planner::Strategy;
 using ssl::planner::testing::PlannedMatch;
 using ssl::referee::GameEventType;
 
-constexpr std::pair<const char*, Strategy> kStrategies[] = {
-    {"base", Strategy::kBase}, {"ball_chaser", Strategy::kBallChaser}, {"wander", Strategy::kWander}};
+/// A side of a pairing: a strategy, and for base how it takes its own free kicks ("base+redirect").
+struct Side {
+  Strategy strategy = Strategy::kBase;
+  FreeKickPlay free_kick = FreeKickPlay::kShot;
+};
 
-std::optional<Strategy> strategy_named(const std::string& name) {
-  for (const auto& [n, s] : kStrategies) {
-    if (name == n) return s;
+constexpr std::pair<const char*, Side> kSides[] = {{"base", {Strategy::kBase, FreeKickPlay::kShot}},
+                                                   {"base+redirect", {Strategy::kBase, FreeKickPlay::kRedirect}},
+                                                   {"ball_chaser", {Strategy::kBallChaser, FreeKickPlay::kShot}},
+                                                   {"wander", {Strategy::kWander, FreeKickPlay::kShot}}};
+
+std::optional<Side> side_named(const std::string& name) {
+  for (const auto& [n, side] : kSides) {
+    if (name == n) return side;
   }
   return std::nullopt;
 }
@@ -69,7 +78,7 @@ struct Job {
 ssl::sslctl::PlayAccount::Intent intent_of(const std::string& skill) {
   using Intent = ssl::sslctl::PlayAccount::Intent;
   if (skill == "pass") return Intent::kPass;
-  if (skill == "shoot") return Intent::kShot;
+  if (skill == "shoot" || skill == "redirect") return Intent::kShot;
   if (skill == "clear_ball" || skill == "challenge") return Intent::kClear;  // away, to nobody in particular
   return Intent::kUnknown;
 }
@@ -115,15 +124,17 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
     std::exit(1);
   }
   const bool a_is_blue = seed % 2 == 0;
-  const Strategy a = *strategy_named(pairing.a);
-  const Strategy b = *strategy_named(pairing.b);
+  const Side a = *side_named(pairing.a);
+  const Side b = *side_named(pairing.b);
   const ssl::sim::FieldGeometry field = ssl::sim::FieldGeometry::division_b();
   PlannedMatch match({.field = field,
                       .robots = 6,
                       .seed = seed,
                       .referee = *profile,
-                      .blue_strategy = a_is_blue ? a : b,
-                      .yellow_strategy = a_is_blue ? b : a});
+                      .blue_strategy = a_is_blue ? a.strategy : b.strategy,
+                      .yellow_strategy = a_is_blue ? b.strategy : a.strategy,
+                      .blue_free_kick = a_is_blue ? a.free_kick : b.free_kick,
+                      .yellow_free_kick = a_is_blue ? b.free_kick : a.free_kick});
   ssl::sslctl::MatchReportBuilder report;
   report.set_field(field.field_length, field.goal_width);
   std::vector<ssl::sslctl::PlayAccount::Robot> robots;
@@ -356,7 +367,8 @@ int main(int argc, char** argv) {
       std::printf(
           "usage: match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...] [--tactics]\n"
           "  plays N seeded whole 6 v 6 matches (default 20; seeds S, S+1, ...) per pairing of strategies (base,\n"
-          "  ball_chaser, wander; default base:ball_chaser and base:base) in lockstep under the strict_ai rules,\n"
+          "  base+redirect: base with the free-kick set play, ball_chaser, wander; default base:ball_chaser and\n"
+          "  base:base) in lockstep under the strict_ai rules,\n"
           "  halves of --half s of playing time (default 300), J matches at a time (default: the cores), and\n"
           "  prints goals, passes, shots, possession and game events per strategy and match, with the budgets;\n"
           "  --tactics: also the share of each role/tactic in normal play\n");
@@ -375,9 +387,8 @@ int main(int argc, char** argv) {
     } else if (arg == "--pairing") {
       const std::string text = value();
       const std::size_t colon = text.find(':');
-      if (colon == std::string::npos || !strategy_named(text.substr(0, colon)) ||
-          !strategy_named(text.substr(colon + 1))) {
-        usage_error("--pairing takes A:B, each base, ball_chaser or wander");
+      if (colon == std::string::npos || !side_named(text.substr(0, colon)) || !side_named(text.substr(colon + 1))) {
+        usage_error("--pairing takes A:B, each base, base+redirect, ball_chaser or wander");
       }
       pairings.push_back({text.substr(0, colon), text.substr(colon + 1)});
     } else {

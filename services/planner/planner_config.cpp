@@ -28,6 +28,10 @@ Fields<PlannerConfig> core_fields() {
           .values({{"base", Strategy::kBase}, {"ball_chaser", Strategy::kBallChaser}, {"wander", Strategy::kWander}})
           .doc("normal play: base (seeds/001), ball_chaser (every field player runs for the ball, the nearest "
                "shoots: the baseline to beat) or wander (every robot tours waypoints: the referee demos)"),
+      config::optional_field("free_kick", &PlannerConfig::free_kick, FreeKickPlay::kShot)
+          .values({{"shot", FreeKickPlay::kShot}, {"redirect", FreeKickPlay::kRedirect}})
+          .doc("the base strategy's own free kicks: shot (at the widest open part of their goal) or redirect "
+               "(a pass that a teammate shoots on at the first touch, where one rates better than the shot)"),
       field("actuation_latency", &PlannerConfig::actuation_latency).unit("s").range(0, 0.2)
           .doc("from a tick until its command acts on the robot; trajectories plan from where the robot will be"),
       field("robot_radius", &PlannerConfig::robot_radius).unit("m").range(0.05, 0.2),

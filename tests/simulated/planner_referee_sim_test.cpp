@@ -1001,6 +1001,80 @@ TEST_P(PlannerSimReferee, ReceiveControlsAtLeastEightyPercentOfPassesFromTwoToFi
   EXPECT_GE(controlled, kPasses * 8 / 10);
 }
 
+TEST_P(PlannerSimReferee, RedirectShootsAtLeastEightOfTenPassesOnIntoTheGoalAtTheFirstTouch) {
+  // The free kick's set play without opponents: the ball lies 0.9-1.6 m in front of their defense area, near
+  // the middle; our robot 1 passes it (pass skill, arriving at 2.5 m/s) to robot 2 (redirect skill, aiming
+  // at the middle of their empty goal) at a point 0.4-0.8 m beside the area, where the pass turns by at most
+  // 0.8 rad into the shot. Redirected: the ball crosses their goal line inside the mouth within 5 s of the
+  // pass, faster than 2 m/s (shot on, not carried), and robot 2 never held it.
+  constexpr int kPasses = 10;
+  constexpr double kMaxTurn = 0.8;  // rad, as the set play allows (TeamPlayParams::redirect_max_angle)
+  std::mt19937 random(static_cast<std::uint32_t>(seed()));
+  const auto uniform = [&](double low, double high) { return std::uniform_real_distribution<double>(low, high)(random); };
+  int scored = 0;
+  for (int attempt = 0; attempt < kPasses; ++attempt) {
+    LockstepMatch m(param(), seed() + static_cast<std::uint64_t>(attempt));
+    for (std::uint32_t id = 0; id < kRobots; ++id) {
+      if (id != 1 && id != 2) take_off(m, true, id);
+      take_off(m, false, id);
+    }
+    const double hl = m.half_length();
+    const double area_front = hl - m.field().penalty_area_depth;
+    const Vec2 goal(hl, 0.0);
+    Vec2 ball = Vec2::Zero();
+    Vec2 point = Vec2::Zero();
+    double turn = 0;
+    do {
+      ball = Vec2(area_front - uniform(0.9, 1.6), uniform(-0.5, 0.5));
+      const double side = uniform(-1, 1) < 0 ? -1.0 : 1.0;
+      point = Vec2(ball.x() + uniform(-0.3, 0.3), side * (m.field().penalty_area_width / 2 + uniform(0.4, 0.8)));
+      const Vec2 back = (ball - point).normalized();
+      turn = std::acos(std::clamp(back.dot((goal - point).normalized()), -1.0, 1.0));
+    } while (turn > kMaxTurn);
+    m.place_ball(ball);
+    const Vec2 u = (point - ball).normalized();
+    const Vec2 shot = (goal - point).normalized();
+    m.place(true, 1, ball - u * 0.5, std::atan2(u.y(), u.x()));
+    m.place(true, 2, point - shot * (kR + kBallRadius), std::atan2(shot.y(), shot.x()));
+    m.planner(true).override_skill(1, SkillOverride{PassParams{.receiver = point, .arrival_speed = 2.5}});
+    m.planner(true).override_skill(2, SkillOverride{RedirectParams{.point = point, .aim = goal}});
+    m.script({{kWarmUp, RefereeCommand::kForceStart}});
+    bool kicked = false;
+    bool held = false;
+    bool in = false;
+    double kicked_at = 0;
+    while (m.time() < kWarmUp + 8.0 && !in) {
+      m.tick();
+      const Truth& truth = m.truth();
+      if (!kicked && truth.ball_velocity.norm() > 1.0) {
+        kicked = true;
+        kicked_at = m.time();
+        m.planner(true).override_skill(1, SkillOverride{StopParams{}});  // the passer steps out of it
+      }
+      if (!kicked) continue;
+      if (m.time() > kicked_at + 5.0) break;
+      for (const TrueRobot& r : truth.robots) {
+        if (r.ours && r.id == 2 && (r.position - truth.ball).norm() < kR + kBallRadius + 0.03 &&
+            (truth.ball_velocity - r.velocity).norm() < 0.3) {
+          held = true;
+        }
+      }
+      if (truth.ball.x() > hl) {
+        in = std::abs(truth.ball.y()) < m.field().goal_width / 2 && truth.ball_velocity.norm() > 2.0;
+        break;
+      }
+    }
+    if (!in || held) {
+      std::printf("[%s] redirect at (%.2f, %.2f), turning %.2f rad, of a pass from (%.2f, %.2f) missed (kicked: %d, "
+                  "held: %d)\n",
+                  param().name().c_str(), point.x(), point.y(), turn, ball.x(), ball.y(), kicked ? 1 : 0, held ? 1 : 0);
+    }
+    scored += in && !held ? 1 : 0;
+  }
+  std::printf("[%s] redirect: %d of %d passes shot on into the goal\n", param().name().c_str(), scored, kPasses);
+  EXPECT_GE(scored, kPasses * 8 / 10);
+}
+
 /// Only our robot `id` (and their robots in `theirs`) on the field; the others taken off.
 void only(LockstepMatch& m, std::uint32_t id, std::initializer_list<std::uint32_t> theirs = {}) {
   for (std::uint32_t other = 0; other < kRobots; ++other) {

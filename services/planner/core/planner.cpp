@@ -101,13 +101,14 @@ bool our_kickoff(const Situation& s) { return s.game->is_our_kickoff(); }
 bool penalty(const Situation& s) { return s.game->is_penalty(); }
 bool our_penalty(const Situation& s) { return s.game->is_our_penalty(); }
 bool free_kick(const Situation& s) { return s.game->is_free_kick(); }
-bool our_free_kick(const Situation& s) { return s.game->is_our_free_kick(); }
+bool is_our_free_kick(const Situation& s) { return s.game->is_our_free_kick(); }
 
 // clang-format off
 /// Seeds/000 section 3, on top of GameState: a restart stays in its branch from PREPARE_* through
 /// NORMAL_START until the ball is in play (moved 0.05 m), so the kicker may kick and the others keep their
-/// places; plain NORMAL_START and FORCE_START match no branch and fall through to the strategy.
-bt::NodePtr referee_override() {
+/// places; plain NORMAL_START and FORCE_START match no branch and fall through to the strategy. `our_free_kick`:
+/// the strategy's play for our free kick.
+bt::NodePtr referee_override(bt::NodePtr our_free_kick) {
   return bt::reactive_selector("RefereeOverride", {
       branch("Halt", "Halted?", halted, run("HaltAll", halt_play)),
       branch("Stop", "Stopped?", stopped, run("StopFormation", stop_play)),
@@ -125,7 +126,10 @@ bt::NodePtr referee_override() {
       branch("Penalty", "Penalty?", penalty,
              dispatch("Penalty", our_penalty, play_our_penalty, play_their_penalty)),
       branch("DirectFree", "DirectFree?", free_kick,
-             dispatch("FreeKick", our_free_kick, play_our_free_kick, play_their_free_kick)),
+             bt::reactive_selector("FreeKickDispatch", {
+                 branch("OurFreeKick", "Ours?", is_our_free_kick, std::move(our_free_kick)),
+                 run("TheirFreeKick", play_their_free_kick),
+             })),
   });
 }
 // clang-format on
@@ -215,6 +219,23 @@ bt::NodePtr base_strategy() {
 }
 // clang-format on
 
+bt::NodeStatus set_up_the_free_kick(const Situation& s, TeamPlayMemory& m, TeamIntents& out, std::uint32_t&) {
+  free_kick_set_play(s, m, out);
+  return bt::NodeStatus::kSuccess;
+}
+
+/// Our free kick: the kicker's straight shot; with FreeKickPlay::kRedirect the base strategy plays it as a set
+/// play where one rates better (free_kick_set_play).
+bt::NodePtr our_free_kick_play(const PlannerConfig& config) {
+  if (config.strategy != Strategy::kBase || config.free_kick != FreeKickPlay::kRedirect) {
+    return run("OurFreeKick", play_our_free_kick);
+  }
+  return bt::sequence("OurFreeKick", {
+      run("FreeKickFormation", play_our_free_kick),
+      strategy_step("FreeKickSetPlay", set_up_the_free_kick),
+  });
+}
+
 bt::NodePtr strategy_tree(Strategy strategy) {
   switch (strategy) {
     case Strategy::kBallChaser: return run("BallChaser", play_ball_chaser);
@@ -254,7 +275,8 @@ struct Planner::Impl {
         team_play(cfg.role_hysteresis),
         own_motion(motion_planner == nullptr),
         motion(motion_planner ? std::move(motion_planner) : make_motion_planner(cfg)),
-        tree(bt::reactive_selector("Root", {referee_override(), strategy_tree(cfg.strategy)})) {
+        tree(bt::reactive_selector("Root", {referee_override(our_free_kick_play(cfg)),
+                                            strategy_tree(cfg.strategy)})) {
     robots.reserve(wm::kMaxRobotsPerTeam);
     enemies.reserve(wm::kMaxRobotsPerTeam);
   }

@@ -104,11 +104,16 @@ enum class MotionControl { kSimple, kTrajectory };
 /// field, ball or not (the referee demos: watch each command take over).
 enum class Strategy { kBase, kBallChaser, kWander };
 
+/// The base strategy's own free kicks: kShot, the kicker shoots at the widest open part of their goal;
+/// kRedirect, the set play of free_kick_set_play (team_play.h) where one rates better, else the shot.
+enum class FreeKickPlay { kShot, kRedirect };
+
 struct PlannerConfig {
   TeamColor team = TeamColor::kBlue;
   MotionLimits limits;
   MotionControl motion = MotionControl::kTrajectory;
   Strategy strategy = Strategy::kBase;
+  FreeKickPlay free_kick = FreeKickPlay::kShot;  // the base strategy only
   // s from the planner's tick until its command acts on the robot (DDS, robot_link, radio): the trajectory
   // skill layer plans from where the last command will have taken the robot by then. world.state is
   // already predicted to now (world_model compensates the vision delay).

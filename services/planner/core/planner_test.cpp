@@ -337,6 +337,56 @@ TEST_P(PlannerRefereeTest, OurFreeKickTakerIsTheClosestRobot) {
             std::optional<std::uint32_t>(3));
 }
 
+TEST_P(PlannerRefereeTest, WithTheRedirectSetPlayOurFreeKickWaitsForItsReceiverThenPasses) {
+  // Division B, our free kick 1 m in front of their defense area behind a wall (the team play test's scene).
+  PlannerConfig config = testing::config_for(GetParam());
+  config.default_field = FieldGeometry::division_b();
+  Script script(GetParam());
+  script.set_ball({2.5, 0.0});
+  script.add_friend(testing::kOurKeeper, {-4.3, 0.0});
+  script.add_friend(1, {2.38, 0.0});
+  script.add_friend(2, {2.6, 1.6});
+  script.add_friend(3, {-1.0, 0.0});
+  script.add_enemy(7, {3.1, -0.1});
+  script.add_enemy(8, {3.1, 0.1});
+  script.add_enemy(9, {4.35, 0.25});
+  script.command(script.ours(Restart::kFreeKick));
+  const auto skill_of_robot = [](const PlannerOutput& out, std::uint32_t id) {
+    for (const RoleInfo& r : out.roles) {
+      if (r.robot_id == id) return r.skill;
+    }
+    return std::string();
+  };
+  // The default (FreeKickPlay::kShot): the taker shoots, nobody redirects.
+  Planner shooting(config);
+  PlannerOutput out;
+  for (int i = 0; i < 3; ++i) out = shooting.step(script.inputs(), testing::at_tick(i));
+  EXPECT_EQ(skill_of_robot(out, 1), "shoot");
+  EXPECT_NE(skill_of_robot(out, 2), "redirect");
+  // The set play: robot 2 goes to its spot to redirect; the taker waits behind the ball, kicker off.
+  config.free_kick = FreeKickPlay::kRedirect;
+  Planner planner(config);
+  for (int i = 0; i < 3; ++i) out = planner.step(script.inputs(), testing::at_tick(i));
+  EXPECT_EQ(skill_of_robot(out, 2), "redirect");
+  ASSERT_NE(planner.last_intent(1), nullptr);
+  EXPECT_EQ(planner.last_intent(1)->kick, KickType::kNone);
+  EXPECT_GT((planner.last_intent(1)->target - script.ball()).norm(), kR + 0.0215);
+  // Robot 2 stands on its spot and the taker behind the ball facing the pass: it passes (kicker armed).
+  ASSERT_NE(planner.last_intent(2), nullptr);
+  const MotionIntent spot = *planner.last_intent(2);
+  script.robot(2)->position = spot.target;
+  script.robot(2)->orientation = spot.orientation;
+  const double dribbler = kR + FieldGeometry::division_b().ball_radius;
+  const Vec2 point = spot.target + dribbler * Vec2(std::cos(spot.orientation), std::sin(spot.orientation));
+  const Vec2 u = (point - script.ball()).normalized();
+  script.robot(1)->position = script.ball() - u * dribbler;
+  script.robot(1)->orientation = std::atan2(u.y(), u.x());
+  for (int i = 3; i < 5; ++i) out = planner.step(script.inputs(), testing::at_tick(i));
+  EXPECT_EQ(skill_of_robot(out, 1), "pass");
+  EXPECT_EQ(planner.last_intent(1)->kick, KickType::kFlat);
+  EXPECT_EQ(skill_of_robot(out, 2), "redirect");
+}
+
 TEST_P(PlannerRefereeTest, TheirFreeKickKeepsDistanceAtFullSpeed) {
   script_.set_ball({-2.0, 1.0});
   script_.robot(3)->position = {-2.2, 1.2};  // inside 0.5 m

@@ -146,15 +146,16 @@ std::string_view skill_name(Skill skill) {
     case Skill::kBlock: return "block";
     case Skill::kDefendGoal: return "defend_goal";
     case Skill::kChallenge: return "challenge";
+    case Skill::kRedirect: return "redirect";
   }
   return "unknown";
 }
 
 Skill skill_of(const SkillCall& call) {
   // SkillCall lists its params in Skill's order.
-  static_assert(std::variant_size_v<SkillCall> == static_cast<std::size_t>(Skill::kChallenge) + 1);
-  static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(Skill::kChallenge), SkillCall>,
-                               ChallengeParams>);
+  static_assert(std::variant_size_v<SkillCall> == static_cast<std::size_t>(Skill::kRedirect) + 1);
+  static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(Skill::kRedirect), SkillCall>,
+                               RedirectParams>);
   return static_cast<Skill>(call.index());
 }
 
@@ -468,6 +469,28 @@ MotionIntent challenge(const Situation& s, const wm::RobotState& robot, const Ch
   return intent;
 }
 
+MotionIntent redirect(const Situation& s, const wm::RobotState&, const RedirectParams& p) {
+  MotionIntent intent = base(s, Skill::kRedirect);
+  // The way the ball comes: along its run once it rolls towards the point, else from where it lies.
+  const double speed = s.ball_velocity.norm();
+  const Vec2 run = geom::normalized_or(s.ball_velocity, Vec2(1, 0));
+  const bool incoming = s.ball_known && speed > kIncomingSpeed && (p.point - s.ball).dot(run) > 0;
+  const Vec2 coming = incoming ? run : geom::normalized_or(p.point - s.ball, Vec2(1, 0));
+  // Met where its line passes the point (the line it runs on now, not the one it was meant to).
+  const Vec2 contact = incoming ? Vec2(s.ball + run * (p.point - s.ball).dot(run)) : p.point;
+  const Vec2 back = -coming;
+  const Vec2 out = geom::normalized_or(p.aim - contact, Vec2(1, 0));
+  const double turn = std::atan2(geom::cross(back, out), back.dot(out));
+  const double heading = geom::angle_of(back).radians() + std::clamp(turn, -p.max_angle, p.max_angle);
+  const Vec2 h = geom::Angle::from_radians(heading).to_unit_vector();
+  intent.target = contact - h * dribbler_distance(s);
+  intent.orientation = heading;
+  intent.kick = KickType::kFlat;
+  intent.kick_speed = std::min(p.speed, rules::kMaxBallSpeed - 0.3);
+  intent.dribble = false;
+  return intent;
+}
+
 MotionIntent run_skill(const Situation& s, const wm::RobotState& robot, const SkillCall& call) {
   return std::visit(
       [&](const auto& p) -> MotionIntent {
@@ -485,6 +508,7 @@ MotionIntent run_skill(const Situation& s, const wm::RobotState& robot, const Sk
         if constexpr (std::is_same_v<P, BlockParams>) return block(s, robot, p);
         if constexpr (std::is_same_v<P, DefendGoalParams>) return defend_goal(s, robot, p);
         if constexpr (std::is_same_v<P, ChallengeParams>) return challenge(s, robot, p);
+        if constexpr (std::is_same_v<P, RedirectParams>) return redirect(s, robot, p);
       },
       call);
 }

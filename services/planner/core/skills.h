@@ -37,6 +37,7 @@ enum class Skill {
   kBlock,
   kDefendGoal,
   kChallenge,
+  kRedirect,
 };
 std::string_view skill_name(Skill skill);
 
@@ -110,10 +111,19 @@ struct ChallengeParams {
   double max_turn = 0.5;   // rad (the ball must still meet the kicker at the front)
   double speed = 3.0;      // m/s
 };
+/// Meet a pass at `point` with the kicker armed, facing `aim`: the first touch shoots the ball on (a
+/// one-touch redirect; the kicker sends it along the heading). The robot turns towards the ball as far as
+/// needed for the ball to meet its front within max_angle of the heading.
+struct RedirectParams {
+  Vec2 point = Vec2::Zero();          // m, where the pass is expected
+  Vec2 aim = Vec2::Zero();            // m, where the redirected ball goes
+  double speed = rules::kMaxBallSpeed - 0.5;  // m/s
+  double max_angle = 0.9;             // rad between the heading and the way back along the pass
+};
 
 using SkillCall = std::variant<PassParams, ReceiveParams, GoToBallParams, GoToPointParams, TurnWithBallParams,
                                ClearParams, ShootParams, StopParams, OpenSpaceParams, ManMarkParams, BlockParams,
-                               DefendGoalParams, ChallengeParams>;
+                               DefendGoalParams, ChallengeParams, RedirectParams>;
 Skill skill_of(const SkillCall& call);
 /// A skill one robot runs instead of the tree's choice (Planner::override_skill).
 struct SkillOverride {
@@ -133,6 +143,7 @@ MotionIntent man_mark(const Situation& s, const wm::RobotState& robot, const Man
 MotionIntent block(const Situation& s, const wm::RobotState& robot, const BlockParams& p);
 MotionIntent defend_goal(const Situation& s, const wm::RobotState& robot, const DefendGoalParams& p);
 MotionIntent challenge(const Situation& s, const wm::RobotState& robot, const ChallengeParams& p);
+MotionIntent redirect(const Situation& s, const wm::RobotState& robot, const RedirectParams& p);
 /// The skill `call` names, with its params.
 MotionIntent run_skill(const Situation& s, const wm::RobotState& robot, const SkillCall& call);
 

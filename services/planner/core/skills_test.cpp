@@ -51,7 +51,7 @@ TEST(Skills, EverySkillNamesItselfAndRunSkillDispatchesByParams) {
   const std::vector<SkillCall> calls = {PassParams{},      ReceiveParams{},  GoToBallParams{},   GoToPointParams{},
                                         TurnWithBallParams{}, ClearParams{},  ShootParams{},      StopParams{},
                                         OpenSpaceParams{},  ManMarkParams{.opponent = 3}, BlockParams{.opponent = 3},
-                                        DefendGoalParams{}, ChallengeParams{}};
+                                        DefendGoalParams{}, ChallengeParams{}, RedirectParams{}};
   for (const SkillCall& call : calls) {
     const MotionIntent intent = run_skill(scene.situation(), robot, call);
     EXPECT_TRUE(intent.active);
@@ -145,6 +145,33 @@ TEST(Skills, AShotAtABallOnTheEdgeOfTheirDefenseAreaStopsWhollyOutsideIt) {
   EXPECT_LT(intent.target.x() + scene.config.robot_radius, 3.5);
   EXPECT_GE(intent.target.x(), ball.x() - kDribbler - 1e-9);
   EXPECT_NEAR(intent.target.y(), 0.0, 1e-9);
+}
+
+TEST(Skills, RedirectPutsItsKickerOnThePointFacingTheAimTurnedAtMostMaxAngleFromTheBall) {
+  // The ball lies at (0, 0), the pass will come to (0, 2): the way back to the ball is -90 degrees.
+  Scene scene({0.0, 0.0});
+  const wm::RobotState robot = robot_at({0.5, 2.5}, 0.0, 2);
+  scene.robots = {robot};
+  const Vec2 point(0.0, 2.0);
+  // An aim 45 degrees off that way (within max_angle, 0.9 rad): faced exactly, kicker armed, on the point.
+  MotionIntent intent = redirect(scene.situation(), robot, {.point = point, .aim = {2.0, 0.0}});
+  EXPECT_EQ(intent.skill, "redirect");
+  EXPECT_EQ(intent.kick, KickType::kFlat);
+  EXPECT_NEAR(intent.kick_speed, rules::kMaxBallSpeed - 0.5, 1e-9);
+  EXPECT_FALSE(intent.dribble);
+  EXPECT_NEAR(intent.orientation, -M_PI / 4, 1e-9);
+  const Vec2 facing(std::cos(intent.orientation), std::sin(intent.orientation));
+  EXPECT_NEAR((intent.target + facing * kDribbler - point).norm(), 0.0, 1e-9);
+  // Their goal centre, 66 degrees off: turned only max_angle from the ball (the ball must meet the front).
+  intent = redirect(scene.situation(), robot, {.point = point, .aim = {4.5, 0.0}});
+  EXPECT_NEAR(intent.orientation, -M_PI / 2 + 0.9, 1e-9);
+  // The ball rolling past the point's side: met where its line passes the point, not at the point.
+  Scene rolling({0.0, 1.0}, {0.0, 2.0});
+  rolling.robots = {robot};
+  const Vec2 off_line(0.1, 2.0);
+  intent = redirect(rolling.situation(), robot, {.point = off_line, .aim = {2.0, 0.0}});
+  const Vec2 heading(std::cos(intent.orientation), std::sin(intent.orientation));
+  EXPECT_NEAR((intent.target + heading * kDribbler - point).norm(), 0.0, 1e-9);
 }
 
 TEST(Skills, ClearKicksAwayFromOurGoalWhereNoOpponentIs) {

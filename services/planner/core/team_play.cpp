@@ -29,6 +29,14 @@ constexpr std::uint32_t kRoleKeyBase = 100;    // StableAssigner keys of the sty
 constexpr double kStrategyGap = 0.1;           // s without a strategy tick: play was stopped in between
 constexpr double kHoldApproachSpeed = 0.5;     // m/s faster than the ball the holder takes it with
 constexpr double kKickFacing = 0.1;            // rad: a holder facing its kick this well kicks (behind_ball_facing)
+constexpr double kRedirectDepth = 3.5;         // m in front of their goal line the free kick's set play looks
+constexpr double kRedirectGrid = 0.25;         // m between the points it rates
+constexpr double kRedirectBack = 0.25;         // m behind the ball a point may lie, at most
+constexpr double kRedirectRange = 2.8;         // m from their goal centre, at most
+constexpr double kRedirectReachCost = 0.05;    // shot quality a second of the receiver's way costs
+constexpr double kRedirectInPlace = 0.08;      // m: the receiver is at its spot ...
+constexpr double kRedirectStill = 0.2;         // m/s ... and standing
+constexpr double kRedirectStaging = 0.1;       // m beyond dribbling distance the kicker waits behind the ball
 
 double sign_or_one(double v) { return v < 0 ? -1.0 : 1.0; }
 
@@ -212,6 +220,18 @@ MotionIntent kick_from_dribbler(const Situation& s, const wm::RobotState& robot,
   return turn;
 }
 
+/// m/s the pass arrives with: faster for a one-touch redirect (the keeper has less time to move across).
+double arrival_speed(const TeamPlayMemory& m) {
+  return m.pass && m.pass->one_touch ? m.params.redirect_arrival_speed : m.params.arrival_speed;
+}
+
+/// The pass's receiver shooting it on at the first touch: at the point, facing the open part of their goal.
+MotionIntent redirect_at(const Situation& s, const TeamPlayMemory& m, const wm::RobotState& receiver) {
+  const Vec2 point = m.pass->point;
+  return redirect(s, receiver, {.point = point, .aim = goal_opening(s, point, receiver.id).target,
+                                .max_angle = m.params.redirect_max_angle});
+}
+
 }  // namespace
 
 double shot_quality(const Situation& s, const Vec2& from, std::optional<std::uint32_t> shooter) {
@@ -389,9 +409,9 @@ bool pass_in_progress(const Situation& s, TeamPlayMemory& m) {
   }
   if (pass.phase == PassIntent::Phase::kInFlight) {
     const double to_receiver = (s.ball - receiver->position).norm();
-    if (to_receiver < kTaken + dribbler_distance(s)) {
-      return end();  // taken: the receiver, now nearest the ball, is the next attacker
-    }
+    // Taken: the receiver, now nearest the ball, is the next attacker. A one-touch pass is taken by its kick
+    // (the ball then runs off the pass's line: deflected, below), or by the receiver once it stopped there.
+    if (to_receiver < kTaken + dribbler_distance(s) && (!pass.one_touch || speed < kKickedSpeed)) return end();
     const bool dead = speed < kLostSpeed && to_receiver > kLostDistance;
     // Deflected (off a robot of either team): a robot reached the ball a moment ago and the ball no longer
     // runs towards the pass's point. Without the robot, a turn of the estimated velocity is noise (the
@@ -421,8 +441,7 @@ void pass_ball(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
   const wm::RobotState* passer = find_robot(s, m.pass->passer);
   if (!passer) return;
   const MotionIntent kick =
-      as_role(pass(s, *passer, {.receiver = m.pass->point, .arrival_speed = m.params.arrival_speed}), Role::kAttacker,
-              "pass");
+      as_role(pass(s, *passer, {.receiver = m.pass->point, .arrival_speed = arrival_speed(m)}), Role::kAttacker, "pass");
   write_intent(s, out, passer->id,
                kick_from_dribbler(s, *passer, geom::normalized_or(m.pass->point - s.ball, Vec2(1, 0)), kick));
 }
@@ -431,8 +450,114 @@ void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
   if (!m.pass) return;
   const wm::RobotState* receiver = find_robot(s, m.pass->receiver);
   if (!receiver) return;
+  if (m.pass->one_touch) {
+    write_intent(s, out, receiver->id, as_role(redirect_at(s, m, *receiver), Role::kReceiver, "pass"));
+    return;
+  }
   write_intent(s, out, receiver->id,
                as_role(receive(s, *receiver, {.point = m.pass->point}), Role::kReceiver, "pass"));
+}
+
+std::optional<PassOption> rate_redirect(const Situation& s, std::uint32_t passer, const TeamPlayParams& params) {
+  TeamPlayParams rating = params;
+  rating.arrival_speed = params.redirect_arrival_speed;
+  rating.min_pass = params.redirect_min_pass;
+  rating.max_pass = params.redirect_max_pass;
+  const double dd = dribbler_distance(s);
+  // Before the kick our robots keep the free kick's distance from their defense area.
+  const double area_margin = s.config->defense_area_keep_away + s.config->robot_radius + s.config->keep_away_margin;
+  const Vec2 goal = s.field.their_goal_center();
+  const double straight = shot_quality(s, s.ball, passer);
+  std::optional<PassOption> best;
+  double best_score = std::max(straight + params.redirect_advantage, params.redirect_min_shot);
+  for (double x = goal.x() - kRedirectDepth; x < goal.x(); x += kRedirectGrid) {
+    for (double y = -s.field.half_width() + kRedirectGrid; y < s.field.half_width(); y += kRedirectGrid) {
+      const Vec2 point(x, y);
+      // Forward or across, near their goal: a pass back from the restart leaves the ball in midfield when the
+      // shot fails.
+      if (point.x() < s.ball.x() - kRedirectBack || (point - goal).norm() > kRedirectRange) continue;
+      const double length = (point - s.ball).norm();
+      if (length < rating.min_pass || length > rating.max_pass) continue;
+      const GoalOpening opening = goal_opening(s, point);
+      const Vec2 back = geom::normalized_or(s.ball - point, Vec2(1, 0));
+      const Vec2 on = geom::normalized_or(opening.target - point, Vec2(1, 0));
+      if (std::acos(std::clamp(back.dot(on), -1.0, 1.0)) > params.redirect_max_angle) continue;
+      // The receiver stands behind the point, facing the shot.
+      if (s.field.in_their_defense_area(point - on * dd, area_margin)) continue;
+      const wm::RobotState* receiver = nullptr;
+      double reach = params.redirect_max_reach;
+      for (const wm::RobotState& mate : s.robots) {
+        if (mate.id == passer || (s.keeper && mate.id == *s.keeper)) continue;
+        const double t = time_to_reach(s, mate, point - on * dd);
+        if (t <= reach) {
+          reach = t;
+          receiver = &mate;
+        }
+      }
+      if (!receiver) continue;
+      std::optional<PassOption> option = rate_pass(s, receiver->id, point, rating);
+      if (!option) continue;
+      const double score = option->receiver_shot - kRedirectReachCost * reach;
+      if (score > best_score) {
+        best_score = score;
+        best = option;
+      }
+    }
+  }
+  return best;
+}
+
+void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
+  if (!s.restart_kicker || !s.ball_known) return;
+  const std::uint32_t kicker = *s.restart_kicker;
+  const TeamPlayParams& params = m.params;
+  if (!m.restart || s.now - m.restart->last_tick > kStrategyGap) {
+    m.restart = RestartPlay{.since = s.now, .last_tick = s.now};
+    m.pass.reset();
+  }
+  RestartPlay& restart = *m.restart;
+  restart.last_tick = s.now;
+  m.last_tick = s.now;  // the strategy takes the pass over once the ball is in play
+  if (restart.shoot) return;
+  const auto give_up = [&] {
+    restart.shoot = true;
+    m.pass.reset();
+  };
+  if (!m.pass) {
+    const std::optional<PassOption> option = rate_redirect(s, kicker, params);
+    if (!option) return give_up();
+    m.pass = PassIntent{.passer = kicker, .receiver = option->receiver, .point = option->point, .since = s.now,
+                        .one_touch = true};
+  }
+  PassIntent& pass = *m.pass;
+  const wm::RobotState* passer = find_robot(s, pass.passer);
+  const wm::RobotState* receiver = find_robot(s, pass.receiver);
+  TeamPlayParams keep = params;  // still possible at all (as a pass being set up in play, pass_in_progress)
+  keep.arrival_speed = params.redirect_arrival_speed;
+  keep.min_margin = params.keep_margin;
+  keep.min_open_angle = 0;
+  keep.min_lane_clearance = 0;
+  keep.min_pass = 0;
+  keep.max_pass = params.redirect_max_pass + 1.0;
+  if (!passer || !receiver || pass.passer != kicker || s.now - restart.since > params.redirect_set_up_timeout ||
+      !rate_pass(s, pass.receiver, pass.point, keep)) {
+    return give_up();
+  }
+  pass.since = s.now;  // the set-up timeout of the pass in play counts from the kick's last chance
+  const double at_dribbler = s.config->robot_radius + s.field.size().ball_radius + kKickContact;
+  if ((s.ball - passer->position).norm() < at_dribbler) pass.ball_at_passer = s.now;
+  const MotionIntent wait = redirect_at(s, m, *receiver);
+  write_intent(s, out, receiver->id, as_role(wait, Role::kReceiver, "free_kick_redirect"));
+  // The kicker passes once the receiver stands still at its spot; until then it waits behind the ball,
+  // facing the pass, clear of it (a touch now puts the ball in play).
+  const bool ready = (receiver->position - wait.target).norm() < kRedirectInPlace &&
+                     receiver->velocity.norm() < kRedirectStill;
+  const Vec2 u = geom::normalized_or(pass.point - s.ball, Vec2(1, 0));
+  MotionIntent kick = ready ? planner::pass(s, *passer, {.receiver = pass.point, .arrival_speed = arrival_speed(m)})
+                            : go_to_point(s, *passer, {.point = s.ball - u * (dribbler_distance(s) + kRedirectStaging),
+                                                       .orientation = geom::angle_of(u).radians()});
+  kick.avoid_ball_radius = ready ? 0.0 : dribbler_distance(s) + kRedirectStaging / 2;
+  write_intent(s, out, kicker, as_role(kick, Role::kAttacker, "free_kick_pass"));
 }
 
 namespace {

@@ -27,6 +27,15 @@ struct PassIntent {
   double since = 0;  // s (Situation::now) the phase began
   std::optional<double> ball_at_passer;  // s the ball last touched the passer's dribbler (set-up)
   std::optional<double> ball_at_robot;   // s the ball was last within reach of any robot (in flight)
+  bool one_touch = false;  // the receiver shoots the ball on at their goal with its first touch (redirect)
+};
+
+/// Our free kick as a set play (seeds/001): a pass to a teammate who shoots it on at the first touch, from
+/// where the goal is more open than from the ball; chosen on the restart's first tick.
+struct RestartPlay {
+  double since = 0;       // s (Situation::now) of the restart's first tick
+  double last_tick = 0;   // s of its last tick: a gap means a new restart
+  bool shoot = false;     // no set play (none rated, or it could not be set up in time): the straight shot
 };
 
 /// A teammate rated as the receiver of a pass from the ball.
@@ -59,6 +68,15 @@ struct TeamPlayParams {
   double contested_distance = 0.4;   // m, opponent centre to ball: the ball is challenged, not shot
   double hold_below = 0.45;          // building up, a shot worse than this is not taken: the ball is kept
   double hold_pass_turn = 0.3;       // rad: a held ball is passed once the holder faces the pass this well
+  // The free kick's set play (RestartPlay).
+  double redirect_arrival_speed = 2.5;  // m/s the pass arrives at the redirecting teammate with
+  double redirect_max_angle = 0.8;      // rad between the pass coming back and the shot going on
+  double redirect_min_pass = 1.0;       // m
+  double redirect_max_pass = 3.5;       // m
+  double redirect_advantage = 0.15;     // the shot from the point must be this much better than from the ball
+  double redirect_min_shot = 0.35;      // and at least this good
+  double redirect_max_reach = 3.0;      // s for the receiver to get to its spot, at most
+  double redirect_set_up_timeout = 4.0; // s from the restart's first tick to the kick, else the straight shot
 };
 
 /// What the team's strategy remembers between ticks (the blackboard of seeds/001).
@@ -70,6 +88,7 @@ struct TeamPlayMemory {
   GameReading reading;
   Style style = Style::kContestBall;
   std::optional<PassIntent> pass;
+  std::optional<RestartPlay> restart;
   StableAssigner roles;
   StableChoice attacker;
   std::array<std::optional<Role>, wm::kMaxRobotsPerTeam> role_of{};    // each robot's role this tick
@@ -92,6 +111,14 @@ std::vector<PassOption> rate_passes(const Situation& s, std::uint32_t passer, co
 std::optional<PassOption> rate_pass(const Situation& s, std::uint32_t receiver, const Vec2& point,
                                     const TeamPlayParams& params = {});
 
+/// The free kick's best one-touch pass from the ball for a field player other than `passer` and the keeper
+/// (its receiver the one quickest to the point): the point is reachable in redirect_max_reach, outside their
+/// defense area with the free kick's distance, redirect_min_pass..redirect_max_pass from the ball; the pass
+/// rates as rate_pass rates it (at redirect_arrival_speed) and turns at most redirect_max_angle towards the
+/// open part of their goal. PassOption::receiver_shot is the shot quality from the point; nullopt when no
+/// point is better than the straight shot by redirect_advantage.
+std::optional<PassOption> rate_redirect(const Situation& s, std::uint32_t passer, const TeamPlayParams& params = {});
+
 // ---- the base strategy's steps (planner.cpp's tree calls them in this order) ----------------------------
 /// The coach reads the game and decides the style.
 void read_game(const Situation& s, TeamPlayMemory& m);
@@ -103,6 +130,11 @@ bool pass_in_progress(const Situation& s, TeamPlayMemory& m);
 /// The passer's kick (set-up phase) and the receiver's reception: the seeds' Parallel "dynamic pass".
 void pass_ball(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
+/// Our free kick in the base strategy, after the free kick play (plays.h) gave the kicker its straight shot:
+/// on the restart's first tick the set play is chosen (rate_redirect); its receiver goes to the point and
+/// waits there, kicker armed, and the kicker passes once the receiver is in place. The pass is the
+/// strategy's pass intent: once the ball is in play the dynamic pass goes on with it.
+void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 /// The attacker in the coach's style: shoots when the shot is good, starts a pass when one is clearly
 /// better, clears in a clearance, challenges the carrier when they have the ball. Building up or holding
 /// possession with a shot that would give the ball away (below hold_below), it keeps the ball on its

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "services/planner/core/planner_test_util.h"
+#include "services/planner/core/skills.h"
 
 namespace ssl::planner {
 namespace {
@@ -203,6 +204,31 @@ TEST(TeamPlay, APassInFlightIsJudgedDeflectedOnlyAfterARobotReachedTheBall) {
   scene.s.now = 0.5;
   EXPECT_FALSE(pass_in_progress(scene.situation(), memory));
   EXPECT_FALSE(memory.pass);
+}
+
+TEST(TeamPlay, AFreeKickBehindAWallIsPassedRoundItToATeammateWhoShootsItOnAtOnce) {
+  // Division B: our free kick 1 m in front of their defense area, a wall of two 0.6 m in front of the ball,
+  // their keeper in the goal near the +y post: the straight shot is hidden. Robot 2 waits wide on +y.
+  Scene scene({2.5, 0.0});
+  scene.robots = {robot_at({2.38, 0.0}, 0, 1), robot_at({2.6, 1.6}, 0, 2), robot_at({-1.0, 0.0}, 0, 3)};
+  scene.enemies = {robot_at({3.1, -0.1}, M_PI, 7), robot_at({3.1, 0.1}, M_PI, 8), robot_at({4.35, 0.25}, M_PI, 9)};
+  const TeamPlayParams params;
+  EXPECT_LT(shot_quality(scene.situation(), scene.s.ball, 1u), 0.05);
+  const std::optional<PassOption> option = rate_redirect(scene.situation(), 1, params);
+  ASSERT_TRUE(option);
+  EXPECT_EQ(option->receiver, 2u);
+  const Vec2 point = option->point;
+  EXPECT_GT(point.y(), 0.5);  // round the wall
+  const double length = (point - scene.s.ball).norm();
+  EXPECT_GE(length, params.redirect_min_pass);
+  EXPECT_LE(length, params.redirect_max_pass);
+  EXPECT_GE(option->receiver_shot, params.redirect_min_shot);
+  const Vec2 back = (scene.s.ball - point).normalized();
+  const Vec2 on = (goal_opening(scene.situation(), point).target - point).normalized();
+  EXPECT_LE(std::acos(back.dot(on)), params.redirect_max_angle + 1e-9);
+  // Without the wall the straight shot is open: no set play.
+  scene.enemies = {robot_at({4.35, 0.25}, M_PI, 9)};
+  EXPECT_FALSE(rate_redirect(scene.situation(), 1, params));
 }
 
 TEST(TeamPlay, AHolderFacingAwayFromItsOpenTeammateTurnsWithTheBallBeforePassing) {

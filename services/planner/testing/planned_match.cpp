@@ -14,6 +14,7 @@ PlannerConfig planner_config(TeamColor team, const PlannedMatchOptions& options)
   config.team = team;
   config.motion = options.motion;
   config.strategy = team == TeamColor::kBlue ? options.blue_strategy : options.yellow_strategy;
+  config.free_kick = team == TeamColor::kBlue ? options.blue_free_kick : options.yellow_free_kick;
   config.actuation_latency = options.actuation_latency;
   config.default_field = options.field;
   return config;

@@ -48,6 +48,8 @@ struct PlannedMatchOptions {
   double actuation_latency = 0;
   Strategy blue_strategy = Strategy::kBase;       // each team's strategy in normal play
   Strategy yellow_strategy = Strategy::kBase;
+  FreeKickPlay blue_free_kick = FreeKickPlay::kShot;  // each team's own free kicks (the base strategy's)
+  FreeKickPlay yellow_free_kick = FreeKickPlay::kShot;
 };
 
 /// The `strict_ai` profile's rules (every foul refereed, cards, defense areas, no progress) for matches that
