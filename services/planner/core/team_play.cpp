@@ -225,6 +225,19 @@ double arrival_speed(const TeamPlayMemory& m) {
   return m.pass && m.pass->one_touch ? m.params.redirect_arrival_speed : m.params.arrival_speed;
 }
 
+/// How the pass being set up is re-rated every tick: kept while it is still possible at all (hysteresis), called
+/// off once an opponent could reach its line first or stands in the ball's path.
+TeamPlayParams still_possible(const TeamPlayMemory& m) {
+  TeamPlayParams keep = m.params;
+  keep.arrival_speed = arrival_speed(m);
+  keep.min_margin = m.params.keep_margin;
+  keep.min_open_angle = 0;
+  keep.min_lane_clearance = 0;  // called off once an opponent stands in the ball's path
+  keep.min_pass = 0;  // the ball moves at the passer's feet: the pass's length is not the question now
+  keep.max_pass = (m.pass && m.pass->one_touch ? m.params.redirect_max_pass : m.params.max_pass) + 1.0;
+  return keep;
+}
+
 /// The pass's receiver shooting it on at the first touch: at the point, facing the open part of their goal.
 MotionIntent redirect_at(const Situation& s, const TeamPlayMemory& m, const wm::RobotState& receiver) {
   const Vec2 point = m.pass->point;
@@ -398,13 +411,7 @@ bool pass_in_progress(const Situation& s, TeamPlayMemory& m) {
     } else {
       // Still a good pass? Opponents move while the passer lines up: re-rated every tick, it is called off
       // (and the attacker decides again) once an opponent could reach its line first.
-      TeamPlayParams keep = params;  // hysteresis: a pass once chosen stays while it is still possible at all
-      keep.min_margin = params.keep_margin;
-      keep.min_open_angle = 0;
-      keep.min_lane_clearance = 0;  // called off once an opponent stands in the ball's path
-      keep.min_pass = 0;  // the ball moves at the passer's feet: the pass's length is not the question now
-      keep.max_pass = params.max_pass + 1.0;
-      if (!rate_pass(s, pass.receiver, pass.point, keep)) return end();
+      if (!rate_pass(s, pass.receiver, pass.point, still_possible(m))) return end();
     }
   }
   if (pass.phase == PassIntent::Phase::kInFlight) {
@@ -532,18 +539,11 @@ void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out)
   PassIntent& pass = *m.pass;
   const wm::RobotState* passer = find_robot(s, pass.passer);
   const wm::RobotState* receiver = find_robot(s, pass.receiver);
-  TeamPlayParams keep = params;  // still possible at all (as a pass being set up in play, pass_in_progress)
-  keep.arrival_speed = params.redirect_arrival_speed;
-  keep.min_margin = params.keep_margin;
-  keep.min_open_angle = 0;
-  keep.min_lane_clearance = 0;
-  keep.min_pass = 0;
-  keep.max_pass = params.redirect_max_pass + 1.0;
   if (!passer || !receiver || pass.passer != kicker || s.now - restart.since > params.redirect_set_up_timeout ||
-      !rate_pass(s, pass.receiver, pass.point, keep)) {
+      !rate_pass(s, pass.receiver, pass.point, still_possible(m))) {
     return give_up();
   }
-  pass.since = s.now;  // the set-up timeout of the pass in play counts from the kick's last chance
+  pass.since = s.now;  // once the ball is in play, the pass's set-up timeout counts from the restart's last tick
   const double at_dribbler = s.config->robot_radius + s.field.size().ball_radius + kKickContact;
   if ((s.ball - passer->position).norm() < at_dribbler) pass.ball_at_passer = s.now;
   const MotionIntent wait = redirect_at(s, m, *receiver);
