@@ -8,6 +8,7 @@
 
 #include "services/planner/core/planner.h"
 #include "services/planner/core/planner_test_util.h"
+#include "services/planner/core/team_play.h"
 
 namespace ssl::planner {
 namespace {
@@ -92,6 +93,38 @@ void BM_PlannerTickMatchCycleP99(benchmark::State& state) { match_cycle(state, M
 void BM_PlannerTickMatchCycleTrajectoriesP99(benchmark::State& state) {
   match_cycle(state, MotionControl::kTrajectory);
 }
+/// The free-kick set play's choice (planner.free_kick=redirect), made once on a restart's first tick: our free
+/// kick 1 m in front of their division A defense area, 11 v 11 (a wall of two in front of the ball), every
+/// point of the grid rated for every field player.
+void BM_FreeKickSetPlayChoiceDivisionA11v11(benchmark::State& state) {
+  const PlannerConfig config;
+  std::vector<wm::RobotState> ours;
+  std::vector<wm::RobotState> theirs;
+  const Vec2 spread[] = {{-5.8, 0},  {-3.5, 1.0}, {-3.5, -1.0}, {-2.0, 2.5}, {-2.0, -2.5}, {-1.0, 0.5},
+                         {0.5, 1.5}, {2.0, -1.8}, {3.0, 3.0},   {3.08, 0.0}, {3.5, 1.8}};
+  for (std::uint32_t id = 0; id < 11; ++id) ours.push_back(testing::robot_at(spread[id], 0.0, id));
+  for (std::uint32_t id = 0; id < 11; ++id) theirs.push_back(testing::robot_at(-spread[id] + Vec2(0, 0.3), M_PI, id));
+  theirs[0].position = {5.85, 0.25};  // their keeper
+  theirs[1].position = {3.8, -0.1};   // the wall
+  theirs[2].position = {3.8, 0.1};
+  Situation s;
+  s.config = &config;
+  s.field = wm::Field(config.default_field);
+  s.ball_known = true;
+  s.ball = {3.2, 0.0};
+  s.robots = ours;
+  s.enemies = theirs;
+  s.keeper = 0;
+  bool found = false;
+  for (auto _ : state) {
+    std::optional<PassOption> option = rate_redirect(s, 9);
+    found = option.has_value();
+    benchmark::DoNotOptimize(option);
+  }
+  state.counters["set_play_found"] = found ? 1 : 0;
+}
+BENCHMARK(BM_FreeKickSetPlayChoiceDivisionA11v11)->Unit(benchmark::kMicrosecond);
+
 BENCHMARK(BM_PlannerTickMatchCycleP99);
 BENCHMARK(BM_PlannerTickMatchCycleTrajectoriesP99);
 

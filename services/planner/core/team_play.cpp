@@ -29,10 +29,9 @@ constexpr std::uint32_t kRoleKeyBase = 100;    // StableAssigner keys of the sty
 constexpr double kStrategyGap = 0.1;           // s without a strategy tick: play was stopped in between
 constexpr double kHoldApproachSpeed = 0.5;     // m/s faster than the ball the holder takes it with
 constexpr double kKickFacing = 0.1;            // rad: a holder facing its kick this well kicks (behind_ball_facing)
-constexpr double kRedirectDepth = 3.5;         // m in front of their goal line the free kick's set play looks
 constexpr double kRedirectGrid = 0.25;         // m between the points it rates
 constexpr double kRedirectBack = 0.25;         // m behind the ball a point may lie, at most
-constexpr double kRedirectRange = 2.8;         // m from their goal centre, at most
+constexpr double kRedirectRange = 1.8;         // m from their goal centre beyond their defense area's depth
 constexpr double kRedirectReachCost = 0.05;    // shot quality a second of the receiver's way costs
 constexpr double kRedirectInPlace = 0.08;      // m: the receiver is at its spot ...
 constexpr double kRedirectStill = 0.2;         // m/s ... and standing
@@ -477,12 +476,15 @@ std::optional<PassOption> rate_redirect(const Situation& s, std::uint32_t passer
   const double straight = shot_quality(s, s.ball, passer);
   std::optional<PassOption> best;
   double best_score = std::max(straight + params.redirect_advantage, params.redirect_min_shot);
-  for (double x = goal.x() - kRedirectDepth; x < goal.x(); x += kRedirectGrid) {
+  const double range = s.field.size().penalty_area_depth + kRedirectRange;  // 2.8 m in division B, 3.6 m in A
+  // A grid anchored on their goal line, from the far end towards the goal.
+  for (int column = static_cast<int>(range / kRedirectGrid); column >= 1; --column) {
+    const double x = goal.x() - column * kRedirectGrid;
     for (double y = -s.field.half_width() + kRedirectGrid; y < s.field.half_width(); y += kRedirectGrid) {
       const Vec2 point(x, y);
       // Forward or across, near their goal: a pass back from the restart leaves the ball in midfield when the
       // shot fails.
-      if (point.x() < s.ball.x() - kRedirectBack || (point - goal).norm() > kRedirectRange) continue;
+      if (point.x() < s.ball.x() - kRedirectBack || (point - goal).norm() > range) continue;
       const double length = (point - s.ball).norm();
       if (length < rating.min_pass || length > rating.max_pass) continue;
       const GoalOpening opening = goal_opening(s, point);
