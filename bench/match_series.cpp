@@ -8,7 +8,7 @@
 // The strategies swap colours every other seed.
 //
 // Per pairing it prints, per strategy and per match on average: goals for / against, passes tried /
-// completed, shots / on target, possession share, kickoffs and free kicks taken and kept (the next touch a
+// completed, shots / on target, possession share, kickoffs, penalties and free kicks taken and kept (the next touch a
 // teammate's, or a goal) and the goals scored from them (no opponent touch between) (sslctl's PlayAccount
 // on the ground truth, the kicker's intent from its planner's skill), and every game event by type, fouls
 // marked, "avoidable" ones (keep-out, too fast in STOP, defense area, double touch, crash) counted apart.
@@ -42,26 +42,45 @@ namespace {
 
 using ssl::TeamColor;
 using ssl::planner::FreeKickPlay;
+using ssl::planner::KickoffPlay;
 using ssl::planner::Strategy;
 using ssl::planner::testing::PlannedMatch;
 using ssl::referee::GameEventType;
 
-/// A side of a pairing: a strategy, and for base how it takes its own free kicks ("base+redirect").
+/// A side of a pairing: a strategy, and for base how it takes its own restarts when not as configured by
+/// default: "base+redirect" (the free-kick set play), "base+kickoff_shot" (kickoffs shot straight), both:
+/// "base+redirect+kickoff_shot".
 struct Side {
   Strategy strategy = Strategy::kBase;
-  FreeKickPlay free_kick = FreeKickPlay::kShot;
+  FreeKickPlay free_kick = ssl::planner::PlannerConfig().free_kick;
+  KickoffPlay kickoff = ssl::planner::PlannerConfig().kickoff;
 };
 
-constexpr std::pair<const char*, Side> kSides[] = {{"base", {Strategy::kBase, FreeKickPlay::kShot}},
-                                                   {"base+redirect", {Strategy::kBase, FreeKickPlay::kRedirect}},
-                                                   {"ball_chaser", {Strategy::kBallChaser, FreeKickPlay::kShot}},
-                                                   {"wander", {Strategy::kWander, FreeKickPlay::kShot}}};
-
 std::optional<Side> side_named(const std::string& name) {
-  for (const auto& [n, side] : kSides) {
-    if (name == n) return side;
+  const std::size_t plus = name.find('+');
+  const std::string strategy = name.substr(0, plus);
+  Side side;
+  if (strategy == "ball_chaser") {
+    side.strategy = Strategy::kBallChaser;
+  } else if (strategy == "wander") {
+    side.strategy = Strategy::kWander;
+  } else if (strategy != "base") {
+    return std::nullopt;
   }
-  return std::nullopt;
+  for (std::size_t at = plus; at != std::string::npos;) {
+    if (side.strategy != Strategy::kBase) return std::nullopt;
+    const std::size_t next = name.find('+', at + 1);
+    const std::string modifier = name.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
+    if (modifier == "redirect") {
+      side.free_kick = FreeKickPlay::kRedirect;
+    } else if (modifier == "kickoff_shot") {
+      side.kickoff = KickoffPlay::kShot;
+    } else {
+      return std::nullopt;
+    }
+    at = next;
+  }
+  return side;
 }
 
 struct Pairing {
@@ -134,7 +153,9 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
                       .blue_strategy = a_is_blue ? a.strategy : b.strategy,
                       .yellow_strategy = a_is_blue ? b.strategy : a.strategy,
                       .blue_free_kick = a_is_blue ? a.free_kick : b.free_kick,
-                      .yellow_free_kick = a_is_blue ? b.free_kick : a.free_kick});
+                      .yellow_free_kick = a_is_blue ? b.free_kick : a.free_kick,
+                      .blue_kickoff = a_is_blue ? a.kickoff : b.kickoff,
+                      .yellow_kickoff = a_is_blue ? b.kickoff : a.kickoff});
   ssl::sslctl::MatchReportBuilder report;
   report.set_field(field.field_length, field.goal_width);
   std::vector<ssl::sslctl::PlayAccount::Robot> robots;
@@ -208,8 +229,11 @@ struct Totals {
   double goals_for = 0, goals_against = 0;
   double passes_tried = 0, passes_completed = 0, shots = 0, on_target = 0, possession = 0, possession_all = 0;
   double passes_intercepted = 0, passes_out = 0;
-  double restarts_taken = 0, restarts_kept = 0;  // kickoffs and free kicks
-  double restart_goals = 0;                       // scored with no opponent touch since the restart
+  /// Restarts of one kind: taken, kept (or scored), goals with no opponent touch since.
+  struct Restarts {
+    double taken = 0, kept = 0, goals = 0;
+  };
+  Restarts kickoffs, penalties, free_kicks;
   std::map<std::string, double> events;  // by type
   double fouls = 0, avoidable_fouls = 0;
   double wins = 0, draws = 0;
@@ -234,9 +258,13 @@ void add(Totals& t, const nlohmann::json& match, const char* us, const char* the
     t.possession_all += mine["play"]["possession_s"].get<double>() + theirs["play"]["possession_s"].get<double>();
     t.passes_intercepted += mine["play"]["passes_intercepted"].get<double>();
     t.passes_out += mine["play"]["passes_out"].get<double>();
-    t.restarts_taken += mine["play"]["restarts_taken"].get<double>();
-    t.restarts_kept += mine["play"]["restarts_kept"].get<double>();
-    t.restart_goals += mine["play"]["restart_goals"].get<double>();
+    for (auto [key, tally] : {std::pair{"kickoffs", &t.kickoffs}, std::pair{"penalties", &t.penalties},
+                              std::pair{"free_kicks", &t.free_kicks}}) {
+      const nlohmann::json& restarts = mine["play"][key];
+      tally->taken += restarts["taken"].get<double>();
+      tally->kept += restarts["kept"].get<double>();
+      tally->goals += restarts["goals"].get<double>();
+    }
   }
   if (match.contains("tactics") && match["tactics"].contains(us)) {
     for (const auto& [name, count] : match["tactics"][us].items()) t.tactics[name] += count.get<double>();
@@ -295,10 +323,14 @@ void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& ma
   row("shots", a.shots / n, b.shots / n);
   row("shots on target", a.on_target / n, b.on_target / n);
   row("possession (%)", ratio(a.possession, a.possession_all), ratio(b.possession, b.possession_all), "%14.0f");
-  row("kickoffs + free kicks taken", a.restarts_taken / n, b.restarts_taken / n);
-  row("  kept or scored (%)", ratio(a.restarts_kept, a.restarts_taken), ratio(b.restarts_kept, b.restarts_taken),
-      "%14.0f");
-  row("  goals from them", a.restart_goals / n, b.restart_goals / n);
+  for (auto [name, restarts] : {std::pair{"kickoffs", &Totals::kickoffs}, std::pair{"penalties", &Totals::penalties},
+                                 std::pair{"free kicks", &Totals::free_kicks}}) {
+    const Totals::Restarts& ra = a.*restarts;
+    const Totals::Restarts& rb = b.*restarts;
+    row((std::string(name) + " taken").c_str(), ra.taken / n, rb.taken / n);
+    row("  kept or scored (%)", ratio(ra.kept, ra.taken), ratio(rb.kept, rb.taken), "%14.0f");
+    row("  goals from them", ra.goals / n, rb.goals / n);
+  }
   row("fouls", a.fouls / n, b.fouls / n);
   row("avoidable fouls (!!)", a.avoidable_fouls / n, b.avoidable_fouls / n);
   std::set<std::string> types;
@@ -367,8 +399,9 @@ int main(int argc, char** argv) {
       std::printf(
           "usage: match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...] [--tactics]\n"
           "  plays N seeded whole 6 v 6 matches (default 20; seeds S, S+1, ...) per pairing of strategies (base,\n"
-          "  base+redirect: base with the free-kick set play, ball_chaser, wander; default base:ball_chaser and\n"
-          "  base:base) in lockstep under the strict_ai rules,\n"
+          "  base+redirect: base with the free-kick set play, base+kickoff_shot: kickoffs shot straight, both:\n"
+          "  base+redirect+kickoff_shot, ball_chaser, wander; default base:ball_chaser and base:base) in lockstep\n"
+          "  under the strict_ai rules,\n"
           "  halves of --half s of playing time (default 300), J matches at a time (default: the cores), and\n"
           "  prints goals, passes, shots, possession and game events per strategy and match, with the budgets;\n"
           "  --tactics: also the share of each role/tactic in normal play\n");
@@ -388,7 +421,7 @@ int main(int argc, char** argv) {
       const std::string text = value();
       const std::size_t colon = text.find(':');
       if (colon == std::string::npos || !side_named(text.substr(0, colon)) || !side_named(text.substr(colon + 1))) {
-        usage_error("--pairing takes A:B, each base, base+redirect, ball_chaser or wander");
+        usage_error("--pairing takes A:B, each base (+redirect, +kickoff_shot), ball_chaser or wander");
       }
       pairings.push_back({text.substr(0, colon), text.substr(colon + 1)});
     } else {

@@ -9,6 +9,7 @@ void GameState::set_restart(Restart restart, TeamColor team, bool ready) {
   ready_ = ready;
   playing_ = false;
   ball_at_ready_ = ready ? last_ball_ : std::nullopt;
+  moved_since_.reset();
 }
 
 void GameState::update(const RefereeInfo& referee, const TeamFrame& frame, const std::optional<Vec2>& ball) {
@@ -42,6 +43,7 @@ void GameState::update(const RefereeInfo& referee, const TeamFrame& frame, const
       if (pending_ && (restart_ == Restart::kKickoff || restart_ == Restart::kPenalty)) {
         ready_ = true;
         ball_at_ready_ = last_ball_;
+        moved_since_.reset();
       } else {
         restart_ = Restart::kNone;
         pending_ = ready_ = false;
@@ -70,14 +72,19 @@ void GameState::update(const RefereeInfo& referee, const TeamFrame& frame, const
   if (!is_ball_placement()) placement_team_.reset();
 }
 
-void GameState::update_ball(const Vec2& ball) {
+void GameState::update_ball(const Vec2& ball, time::Timestamp now) {
   last_ball_ = ball;
   if (!ready_) return;
   if (!ball_at_ready_) {
     ball_at_ready_ = ball;
     return;
   }
-  if ((ball - *ball_at_ready_).norm() > kBallMovedDistance) {
+  if ((ball - *ball_at_ready_).norm() <= kBallMovedDistance) {
+    moved_since_.reset();
+    return;
+  }
+  if (!moved_since_) moved_since_ = now;
+  if (time::to_seconds(now - *moved_since_) >= kBallMovedHold) {
     restart_ = Restart::kNone;
     pending_ = ready_ = false;
     playing_ = true;

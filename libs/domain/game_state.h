@@ -5,8 +5,10 @@
 //
 // State machine (as the rules, and UBC's GameState): PREPARE_KICKOFF_X / PREPARE_PENALTY_X set a pending
 // restart that becomes "ready" with NORMAL_START; DIRECT_FREE_X is ready at once; a ready restart turns
-// into normal play once the ball moved more than kBallMovedDistance from where it was when the restart
-// became ready. FORCE_START is play at once; STOP, HALT, TIMEOUT, GOAL and BALL_PLACEMENT clear it.
+// into normal play once the ball stayed more than kBallMovedDistance from where it was when the restart
+// became ready for kBallMovedHold: a kicked ball moves on, while a jump of the estimate for a frame or two
+// (its velocity spiking while robots crowd or pass the ball) is no kick. Playing on such a jump was a
+// keep-out foul at their restarts and handed our own restart's pass to the strategy before the kick. FORCE_START is play at once; STOP, HALT, TIMEOUT, GOAL and BALL_PLACEMENT clear it.
 //
 //   GameState game(TeamColor::kBlue);
 //   game.update(referee, frame, ball_vision);
@@ -18,6 +20,7 @@
 #include "libs/common/team.h"
 #include "libs/domain/team_frame.h"
 #include "libs/domain/world.h"
+#include "libs/time/time.h"
 
 namespace ssl::wm {
 
@@ -26,13 +29,15 @@ enum class Restart { kNone, kKickoff, kPenalty, kDirectFree, kBallPlacement, kTi
 class GameState {
  public:
   static constexpr double kBallMovedDistance = 0.05;  // m, rules 5.4: the ball is in play after 0.05 m
+  static constexpr double kBallMovedHold = 0.05;      // s it stays beyond that before we play on
 
   explicit GameState(TeamColor us = TeamColor::kBlue) : us_(us) {}
 
   /// Applies a referee state; `ball` (vision frame) is where the ball is now, if known.
   void update(const RefereeInfo& referee, const TeamFrame& frame, const std::optional<Vec2>& ball);
-  /// Tells the state machine where the ball is (vision frame); a taken restart becomes play.
-  void update_ball(const Vec2& ball);
+  /// Tells the state machine where the ball is (vision frame) at `now` (any one clock); a taken restart
+  /// becomes play.
+  void update_ball(const Vec2& ball, time::Timestamp now);
 
   RefereeCommand command() const { return command_; }
   Restart restart() const { return restart_; }
@@ -90,6 +95,7 @@ class GameState {
   bool ready_ = false;
   bool playing_ = false;
   std::optional<Vec2> ball_at_ready_;  // vision frame
+  std::optional<time::Timestamp> moved_since_;  // the ball beyond kBallMovedDistance since
   std::optional<Vec2> last_ball_;      // vision frame
   std::optional<Vec2> placement_team_;
   std::uint32_t our_goalkeeper_ = 0;

@@ -7,6 +7,8 @@ namespace {
 
 using C = RefereeCommand;
 
+const time::Timestamp kKick = time::Timestamp::from_seconds(100.0);
+
 struct Fixture {
   explicit Fixture(TeamColor us) : game(us) {}
   void send(C command, std::optional<Vec2> designated = std::nullopt) {
@@ -44,7 +46,9 @@ TEST(WorldModelGameState, EveryRefereeCommandFromOurSideAndTheirs) {
     EXPECT_TRUE(f.game.is_our_kickoff());
     EXPECT_TRUE(f.game.is_ready());
     EXPECT_FALSE(f.game.is_playing());
-    f.game.update_ball({0.1, 0});  // kicked: moved > 0.05 m
+    f.game.update_ball({0.1, 0}, kKick);  // kicked: moved > 0.05 m ...
+    EXPECT_FALSE(f.game.is_playing());
+    f.game.update_ball({0.2, 0}, kKick + time::duration_from_seconds(GameState::kBallMovedHold));  // ... and on
     EXPECT_TRUE(f.game.is_playing());
     EXPECT_FALSE(f.game.is_kickoff());
 
@@ -99,6 +103,29 @@ TEST(WorldModelGameState, EveryRefereeCommandFromOurSideAndTheirs) {
     EXPECT_EQ(f.game.our_goalkeeper(), blue ? 1u : 2u);
     EXPECT_EQ(f.game.their_goalkeeper(), blue ? 2u : 1u);
   }
+}
+
+TEST(WorldModelGameState, ARestartIsTakenOnlyOnceTheBallStaysMovedNotOnAJumpOfItsEstimate) {
+  Fixture f(TeamColor::kBlue);
+  f.send(C::kStop);
+  f.send(C::kPrepareKickoffYellow);
+  f.send(C::kNormalStart);
+  ASSERT_TRUE(f.game.is_their_kickoff());
+  const auto at = [](double s) { return kKick + time::duration_from_seconds(s); };
+  f.game.update_ball({0.0, 0.0}, at(0.0));
+  // The estimate jumps 8 cm for 40 ms (its velocity spiked while robots crowd the ball), then is back.
+  f.game.update_ball({0.08, 0.0}, at(0.01));
+  f.game.update_ball({0.08, 0.0}, at(0.04));
+  f.game.update_ball({0.0, 0.0}, at(0.05));
+  EXPECT_TRUE(f.game.is_their_kickoff());
+  EXPECT_TRUE(f.game.must_keep_distance_from_ball());
+  // Kicked: beyond 5 cm from then on, in play once it stayed there 0.05 s (boundary exact).
+  f.game.update_ball({0.06, 0.0}, at(1.0));
+  f.game.update_ball({0.3, 0.0}, at(1.0 + GameState::kBallMovedHold - 0.001));
+  EXPECT_FALSE(f.game.is_playing());
+  f.game.update_ball({0.5, 0.0}, at(1.0 + GameState::kBallMovedHold));
+  EXPECT_TRUE(f.game.is_playing());
+  EXPECT_FALSE(f.game.must_keep_distance_from_ball());
 }
 
 TEST(WorldModelGameState, BallPlacementPositionIsInTheTeamFrame) {

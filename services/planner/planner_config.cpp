@@ -32,6 +32,10 @@ Fields<PlannerConfig> core_fields() {
           .values({{"shot", FreeKickPlay::kShot}, {"redirect", FreeKickPlay::kRedirect}})
           .doc("the base strategy's own free kicks: shot (at the widest open part of their goal) or redirect "
                "(a pass that a teammate shoots on at the first touch, where one rates better than the shot)"),
+      config::optional_field("kickoff", &PlannerConfig::kickoff, KickoffPlay::kPass)
+          .values({{"pass", KickoffPlay::kPass}, {"shot", KickoffPlay::kShot}})
+          .doc("the base strategy's own kickoffs: pass (to a teammate waiting in our half, where one rates, "
+               "else the shot) or shot (at their goal)"),
       field("actuation_latency", &PlannerConfig::actuation_latency).unit("s").range(0, 0.2)
           .doc("from a tick until its command acts on the robot; trajectories plan from where the robot will be"),
       field("robot_radius", &PlannerConfig::robot_radius).unit("m").range(0.05, 0.2),

@@ -29,18 +29,20 @@ TEST(PlannerConfig, DeployedFileLoadsWithTheDocumentedDefaults) {
   EXPECT_EQ(config->default_division, Division::kA);
   EXPECT_DOUBLE_EQ(config->core.default_field.field_length, 12.0);
   EXPECT_EQ(config->core.free_kick, FreeKickPlay::kShot);
+  EXPECT_EQ(config->core.kickoff, KickoffPlay::kPass);
 }
 
 TEST(PlannerConfig, OverridesApplyAndDerivedValuesFollow) {
   auto config = load_planner_config(
       deployed(), {"team=yellow", "tick_mode=fixed_rate", "tick_rate=50", "default_division=b",
-                   "planner.limits.max_speed=2.5", "planner.free_kick=redirect"});
+                   "planner.limits.max_speed=2.5", "planner.free_kick=redirect", "planner.kickoff=shot"});
   ASSERT_TRUE(config) << config.error().message;
   EXPECT_EQ(config->core.team, TeamColor::kYellow);
   EXPECT_EQ(config->tick_mode, TickMode::kFixedRate);
   EXPECT_DOUBLE_EQ(config->core.tick_period, 0.02);
   EXPECT_DOUBLE_EQ(config->core.limits.max_speed, 2.5);
   EXPECT_EQ(config->core.free_kick, FreeKickPlay::kRedirect);
+  EXPECT_EQ(config->core.kickoff, KickoffPlay::kShot);
   EXPECT_DOUBLE_EQ(config->core.default_field.field_length, 9.0);
   EXPECT_DOUBLE_EQ(config->core.default_field.goal_width, 1.0);
   EXPECT_DOUBLE_EQ(config->core.default_field.goal_center_to_penalty_mark, 6.0);
@@ -62,6 +64,10 @@ TEST(PlannerConfig, BadValuesAreRejectedWithTheKeyNamed) {
   auto free_kick = load_planner_config(deployed(), {"planner.free_kick=chip"});
   ASSERT_FALSE(free_kick);
   EXPECT_NE(free_kick.error().message.find("free_kick"), std::string::npos) << free_kick.error().message;
+
+  auto kickoff = load_planner_config(deployed(), {"planner.kickoff=chip"});
+  ASSERT_FALSE(kickoff);
+  EXPECT_NE(kickoff.error().message.find("kickoff"), std::string::npos) << kickoff.error().message;
 
   auto unknown = load_planner_config(deployed(), {"tick_mod=fixed_rate"});
   EXPECT_FALSE(unknown);

@@ -32,6 +32,15 @@ std::string clock_text(double seconds) {
 
 double percent(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0; }
 
+/// "taken/kept/goals".
+std::string tally_text(const RestartTally& t) {
+  char text[48];
+  std::snprintf(text, sizeof text, "%u/%u/%u", t.taken, t.kept, t.goals);
+  return text;
+}
+
+nlohmann::json tally_json(const RestartTally& t) { return {{"taken", t.taken}, {"kept", t.kept}, {"goals", t.goals}}; }
+
 }  // namespace
 
 MatchReportBuilder::Activity MatchReportBuilder::activity_of(Command command) {
@@ -94,17 +103,24 @@ void MatchReportBuilder::on_referee(const referee::RefereeState& state, time::Ti
     line->yellow_cards = info->yellow_cards;
     line->red_cards = info->red_cards;
   }
-  // The team taking the restart the ball is in play from: a free kick's, or the kickoff's NORMAL_START.
-  std::optional<TeamColor> restart_team;
-  if (referee::is_kickoff(state.command)) {
-    kickoff_team_ = referee::team_of(state.command);
+  // The restart the ball is in play from: a free kick's, or the kickoff's or penalty's NORMAL_START.
+  std::optional<Restart> restart;
+  if (referee::is_kickoff(state.command) || referee::is_penalty(state.command)) {
+    if (const auto team = referee::team_of(state.command)) {
+      prepared_ = Restart{.team = *team,
+                          .kind = referee::is_kickoff(state.command) ? RestartKind::kKickoff : RestartKind::kPenalty};
+    }
   } else if (state.command == referee::Command::kNormalStart) {
-    restart_team = kickoff_team_;
+    restart = prepared_;
   } else {
-    kickoff_team_.reset();
-    if (referee::is_free_kick(state.command)) restart_team = referee::team_of(state.command);
+    prepared_.reset();
+    if (referee::is_free_kick(state.command)) {
+      if (const auto team = referee::team_of(state.command)) {
+        restart = Restart{.team = *team, .kind = RestartKind::kFreeKick};
+      }
+    }
   }
-  play_.on_referee(activity_of(state.command) == Activity::kInPlay, state.blue_team_on_positive_half, restart_team);
+  play_.on_referee(activity_of(state.command) == Activity::kInPlay, state.blue_team_on_positive_half, restart);
   report_.final_stage = state.stage;
   if (state.stage == referee::Stage::kPostGame) report_.final_whistle = true;
   report_.duration = at;
@@ -199,13 +215,15 @@ std::string to_text(const MatchReport& r) {
     const double possessed = r.yellow.play.possession + r.blue.play.possession;
     for (auto [name, team] : {std::pair{"yellow", &r.yellow}, std::pair{"blue", &r.blue}}) {
       const TeamPlay& p = team->play;
-      char text[256];
+      char text[384];
       std::snprintf(text, sizeof text,
                     "play %s: passes %u tried, %u completed (%.0f %%), %u intercepted, %u out; shots %u, %u on "
-                    "target; kicks %u; possession %.0f %%; restarts %u taken, %u kept, %u goals from them\n",
+                    "target; kicks %u; possession %.0f %%; kickoffs %s, penalties %s, free kicks %s (taken, kept, "
+                    "goals from them)\n",
                     name, p.passes_tried, p.passes_completed, percent(p.passes_completed, p.passes_tried),
                     p.passes_intercepted, p.passes_out, p.shots, p.shots_on_target, p.kicks,
-                    percent(p.possession, possessed), p.restarts_taken, p.restarts_kept, p.restart_goals);
+                    percent(p.possession, possessed), tally_text(p.kickoffs).c_str(), tally_text(p.penalties).c_str(),
+                    tally_text(p.free_kicks).c_str());
       out << text;
     }
   }
@@ -241,8 +259,9 @@ std::string to_json(const MatchReport& r) {
                                    {"passes_intercepted", p.passes_intercepted}, {"passes_out", p.passes_out},
                                    {"shots", p.shots},               {"shots_on_target", p.shots_on_target},
                                    {"kicks", p.kicks},               {"possession_s", p.possession},
-                                   {"restarts_taken", p.restarts_taken}, {"restarts_kept", p.restarts_kept},
-                                   {"restart_goals", p.restart_goals}};
+                                   {"kickoffs", tally_json(p.kickoffs)},
+                                   {"penalties", tally_json(p.penalties)},
+                                   {"free_kicks", tally_json(p.free_kicks)}};
     }
   }
   out["goals"] = json::array();

@@ -124,7 +124,7 @@ class MatchReportBuilder {
   std::optional<time::Timestamp> first_;
   std::optional<time::Timestamp> last_;  // of the latest referee sample
   std::optional<referee::RefereeState> previous_;
-  std::optional<TeamColor> kickoff_team_;  // of the kickoff prepared last, until another command than NORMAL_START
+  std::optional<Restart> prepared_;  // the kickoff or penalty prepared last, until another command than NORMAL_START
   std::set<std::string> seen_events_;
   std::map<std::pair<referee::GameEventType, referee::Team>, std::uint32_t> event_counts_;
   // The stall being measured: where the ball rests since when (only while in play).

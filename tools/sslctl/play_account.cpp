@@ -10,7 +10,7 @@ void PlayAccount::set_field(double length, double goal_width) {
 }
 
 void PlayAccount::on_referee(bool in_play, std::optional<bool> blue_on_positive_half,
-                             std::optional<TeamColor> restart_team) {
+                             std::optional<Restart> restart) {
   if (!in_play) {
     if (open_pass_) ++team_of(open_pass_->team).passes_out;  // play stopped before anybody took the pass
     open_pass_.reset();
@@ -20,10 +20,8 @@ void PlayAccount::on_referee(bool in_play, std::optional<bool> blue_on_positive_
     last_toucher_id_.reset();
     last_toucher_team_.reset();
   }
-  if (in_play && restart_team && (!in_play_ || restart_team != restart_team_)) {
-    open_restart_ = OpenRestart{.team = *restart_team};
-  }
-  restart_team_ = restart_team;
+  if (in_play && restart && (!in_play_ || restart != restart_)) open_restart_ = OpenRestart{.restart = *restart};
+  restart_ = restart;
   if (in_play && !in_play_) compare_speed_ = false;
   in_play_ = in_play;
   if (blue_on_positive_half) blue_on_positive_half_ = blue_on_positive_half;
@@ -78,29 +76,42 @@ void PlayAccount::on_frame(const geom::Vec2& ball, std::span<const Robot> robots
   last_speed_ = speed;
 }
 
+RestartTally& PlayAccount::tally_of(const Restart& restart) {
+  TeamPlay& play = team_of(restart.team);
+  switch (restart.kind) {
+    case RestartKind::kKickoff: return play.kickoffs;
+    case RestartKind::kPenalty: return play.penalties;
+    case RestartKind::kFreeKick: break;
+  }
+  return play.free_kicks;
+}
+
 void PlayAccount::on_goal(TeamColor team) {
-  if (open_restart_ && open_restart_->taker && open_restart_->team == team) ++team_of(team).restarts_kept;
-  if (restart_move_ == team) ++team_of(team).restart_goals;
+  if (open_restart_ && open_restart_->taker && open_restart_->restart.team == team) {
+    ++tally_of(open_restart_->restart).kept;
+  }
+  if (restart_move_ && restart_move_->team == team) ++tally_of(*restart_move_).goals;
   open_restart_.reset();
   restart_move_.reset();
 }
 
 void PlayAccount::settle_restart(const Robot& robot) {
-  if (restart_move_ != robot.team) restart_move_.reset();  // an opponent's touch ends the restart's move
+  if (restart_move_ && restart_move_->team != robot.team) restart_move_.reset();  // an opponent's touch ends it
   if (!open_restart_) return;
+  const Restart restart = open_restart_->restart;
   if (!open_restart_->taker) {
     // The first touch: the restart's taker, or the other team got there first (nothing taken).
-    if (robot.team == open_restart_->team) {
+    if (robot.team == restart.team) {
       open_restart_->taker = robot.id;
-      restart_move_ = robot.team;
-      ++team_of(robot.team).restarts_taken;
+      restart_move_ = restart;
+      ++tally_of(restart).taken;
     } else {
       open_restart_.reset();
     }
     return;
   }
-  if (robot.team == open_restart_->team && robot.id == *open_restart_->taker) return;  // the taker again
-  if (robot.team == open_restart_->team) ++team_of(robot.team).restarts_kept;
+  if (robot.team == restart.team && robot.id == *open_restart_->taker) return;  // the taker again
+  if (robot.team == restart.team) ++tally_of(restart).kept;
   open_restart_.reset();
 }
 

@@ -18,9 +18,9 @@
 //    its kicker was not armed (Intent::kNoKick: the ball came off the robot's body, a touch and no kick).
 //    It is completed when the next robot to touch the ball is a teammate of the kicker (not the kicker),
 //    failed when it is an opponent (intercepted), the kicker itself, or play stops first (out).
-//  * a restart (a kickoff or free kick, told by the caller with the team taking it): taken at the first touch
-//    by that team once the ball is in play; kept when the next robot to touch the ball after its taker is a
-//    teammate, or when the team scores before anybody else touches it (on_goal).
+//  * a restart (a kickoff, penalty or free kick, told by the caller with the team taking it): taken at the
+//    first touch by that team once the ball is in play; kept when the next robot to touch the ball after its
+//    taker is a teammate, or when the team scores before anybody else touches it (on_goal). Counted by kind.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +33,22 @@
 
 namespace ssl::sslctl {
 
+/// The restarts of one kind a team took.
+struct RestartTally {
+  std::uint32_t taken = 0;
+  std::uint32_t kept = 0;   // of those: a teammate touched the ball next, or the team scored
+  std::uint32_t goals = 0;  // goals with no opponent touch since the team took the restart
+};
+
+enum class RestartKind { kKickoff, kPenalty, kFreeKick };
+
+/// A restart the ball is (or is about to be) in play from, and the team taking it.
+struct Restart {
+  TeamColor team = TeamColor::kBlue;
+  RestartKind kind = RestartKind::kFreeKick;
+  bool operator==(const Restart&) const = default;
+};
+
 struct TeamPlay {
   std::uint32_t passes_tried = 0;
   std::uint32_t passes_completed = 0;
@@ -41,9 +57,9 @@ struct TeamPlay {
   std::uint32_t shots = 0;
   std::uint32_t shots_on_target = 0;
   std::uint32_t kicks = 0;        // every kick in play (passes, shots, clearances)
-  std::uint32_t restarts_taken = 0;  // kickoffs and free kicks
-  std::uint32_t restarts_kept = 0;   // of those: a teammate touched the ball next, or the team scored
-  std::uint32_t restart_goals = 0;   // goals with no opponent touch since the team took its restart
+  RestartTally kickoffs;
+  RestartTally penalties;
+  RestartTally free_kicks;
   double possession = 0;          // s in play with this team's robot the last to touch the ball
 };
 
@@ -70,10 +86,10 @@ class PlayAccount {
 
   /// The field's length and goal width (m): goals lie at x = +-length / 2.
   void set_field(double length, double goal_width);
-  /// The referee's state: whether the ball is in play, which half blue defends, and the team taking the
-  /// kickoff or free kick the ball is (or is about to be) in play from.
+  /// The referee's state: whether the ball is in play, which half blue defends, and the restart the ball is
+  /// (or is about to be) in play from.
   void on_referee(bool in_play, std::optional<bool> blue_on_positive_half,
-                  std::optional<TeamColor> restart_team = std::nullopt);
+                  std::optional<Restart> restart = std::nullopt);
   /// A goal for `team` (settles the restart it was taking).
   void on_goal(TeamColor team);
   /// One observation of the ball and every robot seen at `t` (older samples are ignored).
@@ -88,9 +104,10 @@ class PlayAccount {
   };
   TeamPlay& team_of(TeamColor color) { return color == TeamColor::kBlue ? blue_ : yellow_; }
   struct OpenRestart {
-    TeamColor team;
+    Restart restart;
     std::optional<std::uint32_t> taker;  // once taken
   };
+  RestartTally& tally_of(const Restart& restart);
   void on_kick(const Robot& kicker, const geom::Vec2& ball, const geom::Vec2& velocity);
   /// A touch (or kick) by a robot other than the last toucher: takes or settles an open restart, and ends
   /// the move of a taken one when the robot is an opponent.
@@ -110,8 +127,8 @@ class PlayAccount {
   std::optional<TeamColor> possession_;
   std::optional<OpenPass> open_pass_;
   std::optional<OpenRestart> open_restart_;
-  std::optional<TeamColor> restart_move_;  // took its restart and no opponent touched the ball since
-  std::optional<TeamColor> restart_team_;  // as last told by on_referee
+  std::optional<Restart> restart_move_;  // taken, and no opponent touched the ball since
+  std::optional<Restart> restart_;       // as last told by on_referee
   std::optional<std::uint32_t> last_toucher_id_;
   std::optional<TeamColor> last_toucher_team_;
 };

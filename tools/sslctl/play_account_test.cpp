@@ -13,6 +13,8 @@ using geom::Vec2;
 using Robot = PlayAccount::Robot;
 
 const time::Timestamp kStart = time::Timestamp::from_seconds(1'000.0);
+constexpr Restart kBlueFreeKick{.team = TeamColor::kBlue, .kind = RestartKind::kFreeKick};
+constexpr Restart kBlueKickoff{.team = TeamColor::kBlue, .kind = RestartKind::kKickoff};
 
 class PlayAccountTest : public ::testing::Test {
  protected:
@@ -139,42 +141,63 @@ TEST_F(PlayAccountTest, APassOpenWhenPlayStopsFails) {
 
 TEST_F(PlayAccountTest, AFreeKickPassedToATeammateIsKept) {
   account_.on_referee(false, false);
-  account_.on_referee(true, false, TeamColor::kBlue);  // blue's free kick is taken
+  account_.on_referee(true, false, kBlueFreeKick);  // blue's free kick is taken
   roll({0.1, 0}, {0, 0}, 0.3);                                           // blue 1, the taker
   const Vec2 at = roll({0.1, 0}, Vec2(1.8, 1.0).normalized() * 3, 0.69);  // to blue 2
   roll(at, {0, 0}, 0.3);
-  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_taken, 1u);
-  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_kept, 1u);
-  EXPECT_EQ(account_.team(TeamColor::kYellow).restarts_taken, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).free_kicks.taken, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).free_kicks.kept, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kYellow).free_kicks.taken, 0u);
 }
 
 TEST_F(PlayAccountTest, AFreeKickTheOpponentsTouchNextIsNotKeptNorIsALaterGoalFromIt) {
   account_.on_referee(false, false);
-  account_.on_referee(true, false, TeamColor::kBlue);
+  account_.on_referee(true, false, kBlueFreeKick);
   roll({0.1, 0}, {0, 0}, 0.3);
   const Vec2 at = roll({0.1, 0}, Vec2(0.9, -1.0).normalized() * 3, 0.42);  // straight at yellow 1
   roll(at, {0, 0}, 0.3);
   roll({2.0 - 0.1, 1.0}, {0, 0}, 0.3);  // then blue 2 has it: too late
   account_.on_goal(TeamColor::kBlue);   // and scores
-  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_taken, 1u);
-  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_kept, 0u);
-  EXPECT_EQ(account_.team(TeamColor::kBlue).restart_goals, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).free_kicks.taken, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).free_kicks.kept, 0u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).free_kicks.goals, 0u);
 }
 
 TEST_F(PlayAccountTest, ARestartThatScoresIsKeptAndOneThatGoesOutIsNot) {
   account_.on_referee(false, false);
-  account_.on_referee(true, false, TeamColor::kBlue);
+  account_.on_referee(true, false, kBlueFreeKick);
   roll({0.1, 0}, {0, 0}, 0.3);
   roll({0.1, 0}, {4, 0}, 0.3);  // a shot
   account_.on_goal(TeamColor::kBlue);
   account_.on_referee(false, false);
-  account_.on_referee(true, false, TeamColor::kBlue);  // the next one goes out
+  account_.on_referee(true, false, kBlueFreeKick);  // the next one goes out
   roll({0.1, 0}, {0, 0}, 0.3);
   roll({0.1, 0}, {0, 3}, 0.5);
   account_.on_referee(false, false);
-  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_taken, 2u);
-  EXPECT_EQ(account_.team(TeamColor::kBlue).restarts_kept, 1u);
-  EXPECT_EQ(account_.team(TeamColor::kBlue).restart_goals, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).free_kicks.taken, 2u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).free_kicks.kept, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).free_kicks.goals, 1u);
+}
+
+TEST_F(PlayAccountTest, AKickoffIsCountedApartFromTheFreeKickThatFollowsIt) {
+  account_.on_referee(false, false);
+  account_.on_referee(true, false, kBlueKickoff);
+  roll({0.1, 0}, {0, 0}, 0.3);
+  const Vec2 at = roll({0.1, 0}, Vec2(1.8, 1.0).normalized() * 3, 0.69);  // to blue 2: kept
+  roll(at, {0, 0}, 0.3);
+  account_.on_referee(false, false);
+  account_.on_referee(true, false, kBlueFreeKick);  // a free kick from the same spot, shot into the goal
+  roll({0.1, 0}, {0, 0}, 0.3);
+  roll({0.1, 0}, {4, 0}, 0.3);
+  account_.on_goal(TeamColor::kBlue);
+  const TeamPlay& blue = account_.team(TeamColor::kBlue);
+  EXPECT_EQ(blue.kickoffs.taken, 1u);
+  EXPECT_EQ(blue.kickoffs.kept, 1u);
+  EXPECT_EQ(blue.kickoffs.goals, 0u);
+  EXPECT_EQ(blue.free_kicks.taken, 1u);
+  EXPECT_EQ(blue.free_kicks.kept, 1u);
+  EXPECT_EQ(blue.free_kicks.goals, 1u);
+  EXPECT_EQ(blue.penalties.taken, 0u);
 }
 
 }  // namespace

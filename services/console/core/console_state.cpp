@@ -155,7 +155,7 @@ void ConsoleState::on_referee_event(const referee::RefereeEvent& event, time::Ti
   std::string text(referee::to_string(game_event.type));
   const std::optional<TeamColor> team = team_of(game_event.by_team);
   if (team) text += std::string(" by ") + std::string(team_name(*team));
-  if (game_event.by_bot) text += " " + std::to_string(*game_event.by_bot);
+  if (game_event.by_bot) text.append(" ").append(std::to_string(*game_event.by_bot));
   if (!game_event.text.empty()) text += ": " + game_event.text;
   log({now, kind, std::move(text), team});
 }

@@ -106,9 +106,9 @@ bool is_our_free_kick(const Situation& s) { return s.game->is_our_free_kick(); }
 // clang-format off
 /// Seeds/000 section 3, on top of GameState: a restart stays in its branch from PREPARE_* through
 /// NORMAL_START until the ball is in play (moved 0.05 m), so the kicker may kick and the others keep their
-/// places; plain NORMAL_START and FORCE_START match no branch and fall through to the strategy. `our_free_kick`:
-/// the strategy's play for our free kick.
-bt::NodePtr referee_override(bt::NodePtr our_free_kick) {
+/// places; plain NORMAL_START and FORCE_START match no branch and fall through to the strategy.
+/// `our_kickoff_play`, `our_free_kick`: the strategy's plays for our kickoff and our free kick.
+bt::NodePtr referee_override(bt::NodePtr our_kickoff_play, bt::NodePtr our_free_kick) {
   return bt::reactive_selector("RefereeOverride", {
       branch("Halt", "Halted?", halted, run("HaltAll", halt_play)),
       branch("Stop", "Stopped?", stopped, run("StopFormation", stop_play)),
@@ -122,7 +122,10 @@ bt::NodePtr referee_override(bt::NodePtr our_free_kick) {
                  run("CannotPlace", cannot_place_play),
              })),
       branch("Kickoff", "Kickoff?", kickoff,
-             dispatch("Kickoff", our_kickoff, play_our_kickoff, play_their_kickoff)),
+             bt::reactive_selector("KickoffDispatch", {
+                 branch("OurKickoff", "Ours?", our_kickoff, std::move(our_kickoff_play)),
+                 run("TheirKickoff", play_their_kickoff),
+             })),
       branch("Penalty", "Penalty?", penalty,
              dispatch("Penalty", our_penalty, play_our_penalty, play_their_penalty)),
       branch("DirectFree", "DirectFree?", free_kick,
@@ -236,6 +239,23 @@ bt::NodePtr our_free_kick_play(const PlannerConfig& config) {
   });
 }
 
+bt::NodeStatus set_up_the_kickoff(const Situation& s, TeamPlayMemory& m, TeamIntents& out, std::uint32_t&) {
+  kickoff_set_play(s, m, out);
+  return bt::NodeStatus::kSuccess;
+}
+
+/// Our kickoff: the kicker's straight shot; with KickoffPlay::kPass the base strategy passes it to a teammate
+/// where a pass rates (kickoff_set_play).
+bt::NodePtr our_kickoff_play(const PlannerConfig& config) {
+  if (config.strategy != Strategy::kBase || config.kickoff != KickoffPlay::kPass) {
+    return run("OurKickoff", play_our_kickoff);
+  }
+  return bt::sequence("OurKickoff", {
+      run("KickoffFormation", play_our_kickoff),
+      strategy_step("KickoffSetPlay", set_up_the_kickoff),
+  });
+}
+
 bt::NodePtr strategy_tree(Strategy strategy) {
   switch (strategy) {
     case Strategy::kBallChaser: return run("BallChaser", play_ball_chaser);
@@ -275,7 +295,7 @@ struct Planner::Impl {
         team_play(cfg.role_hysteresis),
         own_motion(motion_planner == nullptr),
         motion(motion_planner ? std::move(motion_planner) : make_motion_planner(cfg)),
-        tree(bt::reactive_selector("Root", {referee_override(our_free_kick_play(cfg)),
+        tree(bt::reactive_selector("Root", {referee_override(our_kickoff_play(cfg), our_free_kick_play(cfg)),
                                             strategy_tree(cfg.strategy)})) {
     robots.reserve(wm::kMaxRobotsPerTeam);
     enemies.reserve(wm::kMaxRobotsPerTeam);
@@ -316,7 +336,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   std::optional<Vec2> ball_vision;
   if (ball_known) ball_vision = frame.to_vision_point(ball);
   game.update(referee, frame, ball_vision);
-  if (ball_vision) game.update_ball(*ball_vision);
+  if (ball_vision) game.update_ball(*ball_vision, now);
 
   robots.clear();
   for (const wm::RobotState& robot : world.friendly) {

@@ -108,12 +108,17 @@ enum class Strategy { kBase, kBallChaser, kWander };
 /// kRedirect, the set play of free_kick_set_play (team_play.h) where one rates better, else the shot.
 enum class FreeKickPlay { kShot, kRedirect };
 
+/// The base strategy's own kickoffs: kPass, the set play of kickoff_set_play (team_play.h): a pass to a
+/// teammate waiting in our half where one rates, else the shot; kShot, the kicker shoots at their goal.
+enum class KickoffPlay { kShot, kPass };
+
 struct PlannerConfig {
   TeamColor team = TeamColor::kBlue;
   MotionLimits limits;
   MotionControl motion = MotionControl::kTrajectory;
   Strategy strategy = Strategy::kBase;
   FreeKickPlay free_kick = FreeKickPlay::kShot;  // the base strategy only
+  KickoffPlay kickoff = KickoffPlay::kPass;      // the base strategy only
   // s from the planner's tick until its command acts on the robot (DDS, robot_link, radio): the trajectory
   // skill layer plans from where the last command will have taken the robot by then. world.state is
   // already predicted to now (world_model compensates the vision delay).

@@ -277,6 +277,52 @@ TEST_P(PlannerRefereeTest, OurKickoffKickerKicksAfterNormalStart) {
   EXPECT_TRUE(kicked);
 }
 
+TEST_P(PlannerRefereeTest, WithTheKickoffSetPlayOurKickoffIsPassedToTheOpenWing) {
+  // Division B, our kickoff (the team play test's scene): the kicker behind the ball, the wings beside the
+  // centre circle in our half, one of theirs beside the +y wing's lane.
+  PlannerConfig config = testing::config_for(GetParam());
+  config.default_field = FieldGeometry::division_b();
+  Script script(GetParam());
+  script.set_ball({0.0, 0.0});
+  script.add_friend(testing::kOurKeeper, {-4.3, 0.0});
+  script.add_friend(1, {-(kR + 0.0215 + 0.01), 0.0});
+  script.add_friend(2, {-0.35, 1.2});
+  script.add_friend(3, {-0.35, -1.2});
+  script.add_friend(4, {-2.5, 0.0});
+  script.add_enemy(7, {0.7, 0.0});
+  script.add_enemy(8, {1.5, -1.5});
+  script.add_enemy(9, {0.1, 0.65});
+  script.command(script.ours(Restart::kKickoff));
+  const auto role_of_robot = [](const PlannerOutput& out, std::uint32_t id) {
+    for (const RoleInfo& r : out.roles) {
+      if (r.robot_id == id) return r;
+    }
+    return RoleInfo{};
+  };
+  const auto kick_off = [&](Planner& planner) {
+    for (int i = 0; i < 3; ++i) planner.step(script.inputs(), testing::at_tick(i));
+    script.command(RefereeCommand::kNormalStart);
+    PlannerOutput out;
+    for (int i = 3; i < 5; ++i) out = planner.step(script.inputs(), testing::at_tick(i));
+    script.command(script.ours(Restart::kKickoff));
+    return out;
+  };
+  // KickoffPlay::kShot: the kicker shoots.
+  config.kickoff = KickoffPlay::kShot;
+  Planner shooting(config);
+  EXPECT_EQ(role_of_robot(kick_off(shooting), 1).skill, "shoot");
+  // The set play (the default): the kicker passes to the open wing (3), who waits for it where it stands.
+  config.kickoff = KickoffPlay::kPass;
+  Planner planner(config);
+  const PlannerOutput out = kick_off(planner);
+  EXPECT_EQ(out.play, "our_kickoff");
+  EXPECT_EQ(role_of_robot(out, 1).tactic, "kickoff_pass");
+  EXPECT_EQ(role_of_robot(out, 1).skill, "pass");
+  EXPECT_EQ(role_of_robot(out, 3).tactic, "kickoff_receive");
+  EXPECT_LT(role_of_robot(out, 3).target.x(), 0.0);
+  EXPECT_NE(role_of_robot(out, 2).tactic, "kickoff_receive");
+}
+
 TEST_P(PlannerRefereeTest, TheirKickoffEveryoneInOurHalfOutsideTheCircle) {
   script_.command(script_.theirs(Restart::kKickoff));
   const PlannerOutput out = ticks(3);

@@ -23,6 +23,8 @@ constexpr double kMaxDribble = rules::kMaxDribblingDistance - 0.1;
 constexpr double kIncomingSpeed = 0.5;
 /// m: the receiver gives way (cushions) once the ball is this close.
 constexpr double kCushionDistance = 0.4;
+/// m beside the ball's line a receiver may be and still give way with it (else it first steps onto the line).
+constexpr double kCushionOffLine = 0.03;
 /// s the marker aims ahead of where its opponent is (the latency it reacts with).
 constexpr double kMarkLookahead = 0.05;
 /// m inside the post (beyond the ball's width) a shot at a gap beside the post aims.
@@ -267,9 +269,14 @@ MotionIntent receive(const Situation& s, const wm::RobotState& robot, const Rece
   intent.orientation = geom::angle_of(Vec2(-v)).radians();
   intent.target = contact + v * dd;
   if ((robot.position - s.ball).norm() < kCushionDistance + dd) {
-    // Give way with the ball: the dribbler meets it at a lower relative speed and holds it.
-    intent.target = robot.position + v * (p.cushion * speed * 0.5);
-    intent.max_speed = std::min(intent.max_speed, p.cushion * speed);
+    // The ball is near: onto its line where the robot stands across it, at full speed while beside it; once
+    // on it, give way with the ball, so that the dribbler meets it at a lower relative speed and holds it.
+    const Vec2 across = s.ball + v * (robot.position - s.ball).dot(v);
+    intent.target = across;
+    if ((robot.position - across).norm() < kCushionOffLine) {
+      intent.target = across + v * (p.cushion * speed * 0.5);
+      intent.max_speed = std::min(intent.max_speed, p.cushion * speed);
+    }
   }
   return intent;
 }

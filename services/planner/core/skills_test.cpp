@@ -87,6 +87,20 @@ TEST(Skills, ReceiveStandsOnTheBallsLineFacingIt) {
   EXPECT_EQ(wait.target, Vec2(2, 0.3));
 }
 
+TEST(Skills, AReceiverBesideTheLineOfANearBallStepsOntoItAtFullSpeedAndGivesWayOnlyOnIt) {
+  // The ball rolls along +x at 2 m/s, 0.3 m in front of the receiver.
+  Scene scene({0, 0}, {2, 0});
+  const MotionIntent beside = receive(scene.situation(), robot_at({0.3, 0.07}, M_PI), {.point = {1, 0}});
+  EXPECT_NEAR(beside.target.x(), 0.3, 1e-9) << "straight across onto the line";
+  EXPECT_NEAR(beside.target.y(), 0.0, 1e-9);
+  EXPECT_EQ(beside.max_speed, scene.config.limits.max_speed) << "no speed cap while beside the line";
+  const ReceiveParams params{.point = {1, 0}};
+  const MotionIntent on = receive(scene.situation(), robot_at({0.3, 0.01}, M_PI), params);
+  EXPECT_NEAR(on.target.y(), 0.0, 1e-9);
+  EXPECT_NEAR(on.target.x(), 0.3 + params.cushion * 2 * 0.5, 1e-9) << "back along the line with the ball";
+  EXPECT_NEAR(on.max_speed, params.cushion * 2, 1e-9);
+}
+
 TEST(Skills, GoToPointWithTheBallStopsShortOfTheDribblingLimit) {
   Scene scene({0, 0});
   const wm::RobotState robot = robot_at({-kDribbler, 0}, 0);

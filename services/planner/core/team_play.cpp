@@ -29,6 +29,7 @@ constexpr std::uint32_t kRoleKeyBase = 100;    // StableAssigner keys of the sty
 constexpr double kStrategyGap = 0.1;           // s without a strategy tick: play was stopped in between
 constexpr double kHoldApproachSpeed = 0.5;     // m/s faster than the ball the holder takes it with
 constexpr double kKickFacing = 0.1;            // rad: a holder facing its kick this well kicks (behind_ball_facing)
+constexpr double kTurnAreaClearance = 0.15;    // m: a ball this near their defense area is not turned with
 constexpr double kRedirectGrid = 0.25;         // m between the points it rates
 constexpr double kRedirectBack = 0.25;         // m behind the ball a point may lie, at most
 constexpr double kRedirectRange = 1.8;         // m from their goal centre beyond their defense area's depth
@@ -210,9 +211,13 @@ MotionIntent role_default(const Situation& s, const wm::RobotState& robot, const
 
 /// `kick` (a pass, shot or clearance along `u`) by a robot that holds the ball: it first turns with the ball
 /// on its dribbler until it faces `u` (going round the ball would hand it to a nearby opponent).
+/// The ball lies within kTurnAreaClearance of their defense area: turning with it would drag it in (a robot
+/// touching a ball inside is a foul).
+bool ball_near_their_area(const Situation& s) { return s.field.in_their_defense_area(s.ball, kTurnAreaClearance); }
+
 MotionIntent kick_from_dribbler(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent kick) {
   const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
-  if (!holds_ball(s, robot) || heading.dot(u) > std::cos(kKickFacing)) return kick;
+  if (!holds_ball(s, robot) || heading.dot(u) > std::cos(kKickFacing) || ball_near_their_area(s)) return kick;
   MotionIntent turn = turn_with_ball(s, robot, {.orientation = geom::angle_of(u).radians()});
   turn.role = kick.role;
   turn.tactic = kick.tactic;
@@ -516,17 +521,49 @@ std::optional<PassOption> rate_redirect(const Situation& s, std::uint32_t passer
   return best;
 }
 
-void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
-  if (!s.restart_kicker || !s.ball_known) return;
-  const std::uint32_t kicker = *s.restart_kicker;
-  const TeamPlayParams& params = m.params;
+namespace {
+
+/// The restart being played: a new one after a gap in the restart's ticks (play stopped in between).
+RestartPlay& restart_play(const Situation& s, TeamPlayMemory& m) {
   if (!m.restart || s.now - m.restart->last_tick > kStrategyGap) {
     m.restart = RestartPlay{.since = s.now, .last_tick = s.now};
     m.pass.reset();
   }
-  RestartPlay& restart = *m.restart;
-  restart.last_tick = s.now;
+  m.restart->last_tick = s.now;
   m.last_tick = s.now;  // the strategy takes the pass over once the ball is in play
+  return *m.restart;
+}
+
+struct PassEnds {
+  const wm::RobotState* passer = nullptr;
+  const wm::RobotState* receiver = nullptr;
+};
+
+/// The set play's pass (m.pass), re-checked every tick until the kick: its passer (still the restart's
+/// kicker) and receiver on the field, set up within `set_up_timeout` of the restart's first tick and still
+/// possible; nullopt when the set play is off. Keeps the pass's set-up clock at the restart's last tick (once
+/// the ball is in play the dynamic pass's own timeout counts from there) and notes the ball at the passer.
+std::optional<PassEnds> restart_pass_holds(const Situation& s, TeamPlayMemory& m, std::uint32_t kicker,
+                                           double set_up_timeout) {
+  PassIntent& pass = *m.pass;
+  const PassEnds ends{find_robot(s, pass.passer), find_robot(s, pass.receiver)};
+  if (!ends.passer || !ends.receiver || pass.passer != kicker || s.now - m.restart->since > set_up_timeout ||
+      !rate_pass(s, pass.receiver, pass.point, still_possible(m))) {
+    return std::nullopt;
+  }
+  pass.since = s.now;
+  const double at_dribbler = s.config->robot_radius + s.field.size().ball_radius + kKickContact;
+  if ((s.ball - ends.passer->position).norm() < at_dribbler) pass.ball_at_passer = s.now;
+  return ends;
+}
+
+}  // namespace
+
+void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
+  if (!s.restart_kicker || !s.ball_known) return;
+  const std::uint32_t kicker = *s.restart_kicker;
+  const TeamPlayParams& params = m.params;
+  RestartPlay& restart = restart_play(s, m);
   if (restart.shoot) return;
   const auto give_up = [&] {
     restart.shoot = true;
@@ -538,16 +575,11 @@ void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out)
     m.pass = PassIntent{.passer = kicker, .receiver = option->receiver, .point = option->point, .since = s.now,
                         .one_touch = true};
   }
-  PassIntent& pass = *m.pass;
-  const wm::RobotState* passer = find_robot(s, pass.passer);
-  const wm::RobotState* receiver = find_robot(s, pass.receiver);
-  if (!passer || !receiver || pass.passer != kicker || s.now - restart.since > params.redirect_set_up_timeout ||
-      !rate_pass(s, pass.receiver, pass.point, still_possible(m))) {
-    return give_up();
-  }
-  pass.since = s.now;  // once the ball is in play, the pass's set-up timeout counts from the restart's last tick
-  const double at_dribbler = s.config->robot_radius + s.field.size().ball_radius + kKickContact;
-  if ((s.ball - passer->position).norm() < at_dribbler) pass.ball_at_passer = s.now;
+  const std::optional<PassEnds> ends = restart_pass_holds(s, m, kicker, params.redirect_set_up_timeout);
+  if (!ends) return give_up();
+  const PassIntent& pass = *m.pass;
+  const wm::RobotState* passer = ends->passer;
+  const wm::RobotState* receiver = ends->receiver;
   const MotionIntent wait = redirect_at(s, m, *receiver);
   write_intent(s, out, receiver->id, as_role(wait, Role::kReceiver, "free_kick_redirect"));
   // The kicker passes once the receiver stands still at its spot; until then it waits behind the ball,
@@ -560,6 +592,40 @@ void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out)
                                                        .orientation = geom::angle_of(u).radians()});
   kick.avoid_ball_radius = ready ? 0.0 : dribbler_distance(s) + kRedirectStaging / 2;
   write_intent(s, out, kicker, as_role(kick, Role::kAttacker, "free_kick_pass"));
+}
+
+void kickoff_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
+  if (!s.restart_kicker || !s.ball_known) return;
+  const std::uint32_t kicker = *s.restart_kicker;
+  const TeamPlayParams& params = m.params;
+  RestartPlay& restart = restart_play(s, m);
+  if (restart.shoot) return;
+  const auto give_up = [&] {
+    restart.shoot = true;
+    m.pass.reset();
+  };
+  // Until the ball is in play every robot but the kicker stays in our half, out of the centre circle.
+  const double margin = s.config->robot_radius + s.config->keep_away_margin;
+  const auto in_our_half = [&](const Vec2& point) {
+    return point.x() <= -margin && point.norm() >= s.field.size().center_circle_radius + margin;
+  };
+  if (!m.pass) {
+    const std::vector<PassOption> options = rate_passes(s, kicker, params);
+    const auto best = std::find_if(options.begin(), options.end(),
+                                   [&](const PassOption& option) { return in_our_half(option.point); });
+    if (best == options.end()) return give_up();
+    m.pass = PassIntent{.passer = kicker, .receiver = best->receiver, .point = best->point, .since = s.now};
+  }
+  const std::optional<PassEnds> ends = restart_pass_holds(s, m, kicker, params.kickoff_set_up_timeout);
+  if (!ends) return give_up();
+  const PassIntent& pass = *m.pass;
+  const wm::RobotState* passer = ends->passer;
+  const wm::RobotState* receiver = ends->receiver;
+  write_intent(s, out, receiver->id,
+               as_role(receive(s, *receiver, {.point = pass.point}), Role::kReceiver, "kickoff_receive"));
+  write_intent(s, out, kicker,
+               as_role(planner::pass(s, *passer, {.receiver = pass.point, .arrival_speed = arrival_speed(m)}),
+                       Role::kAttacker, "kickoff_pass"));
 }
 
 namespace {
@@ -649,7 +715,8 @@ void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamI
   }
   const bool at_ball = (robot->position - s.ball).norm() < 0.5;
   const bool building_up = m.style == Style::kBuildUpAttack || m.style == Style::kHoldPossession;
-  if (at_ball && building_up && quality < params.hold_below && s.possession != wm::Possession::kEnemy) {
+  if (at_ball && building_up && quality < params.hold_below && s.possession != wm::Possession::kEnemy &&
+      !ball_near_their_area(s)) {
     hold_ball(s, m, *robot, out);
     return;
   }

@@ -30,8 +30,9 @@ struct PassIntent {
   bool one_touch = false;  // the receiver shoots the ball on at their goal with its first touch (redirect)
 };
 
-/// Our free kick as a set play (seeds/001): a pass to a teammate who shoots it on at the first touch, from
-/// where the goal is more open than from the ball; chosen on the restart's first tick.
+/// Our restart as a set play (seeds/001), chosen on the restart's first tick: a free kick passed to a
+/// teammate who shoots it on at the first touch, from where the goal is more open than from the ball; a
+/// kickoff passed to a teammate waiting in our half.
 struct RestartPlay {
   double since = 0;       // s (Situation::now) of the restart's first tick
   double last_tick = 0;   // s of its last tick: a gap means a new restart
@@ -77,6 +78,8 @@ struct TeamPlayParams {
   double redirect_min_shot = 0.35;      // and at least this good
   double redirect_max_reach = 3.0;      // s for the receiver to get to its spot, at most
   double redirect_set_up_timeout = 4.0; // s from the restart's first tick to the kick, else the straight shot
+  // The kickoff's set play (RestartPlay).
+  double kickoff_set_up_timeout = 3.0;  // s from NORMAL_START to the kick, else the straight shot
 };
 
 /// What the team's strategy remembers between ticks (the blackboard of seeds/001).
@@ -135,6 +138,12 @@ void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 /// waits there, kicker armed, and the kicker passes once the receiver is in place. The pass is the
 /// strategy's pass intent: once the ball is in play the dynamic pass goes on with it.
 void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
+/// Our kickoff in the base strategy, after the kickoff play gave the kicker its straight shot: once the kickoff
+/// may be taken (the kickoff play names the kicker, Situation::restart_kicker), the kicker passes to the teammate rate_passes rates best of those waiting in our half (the
+/// kickoff's wings beside the centre circle), who takes it where it stands; the pass is the strategy's pass
+/// intent, which goes on as a dynamic pass once the ball is in play. With no pass rated, or none kicked within
+/// kickoff_set_up_timeout, the straight shot stands.
+void kickoff_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 /// The attacker in the coach's style: shoots when the shot is good, starts a pass when one is clearly
 /// better, clears in a clearance, challenges the carrier when they have the ball. Building up or holding
 /// possession with a shot that would give the ball away (below hold_below), it keeps the ball on its

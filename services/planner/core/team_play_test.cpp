@@ -231,6 +231,71 @@ TEST(TeamPlay, AFreeKickBehindAWallIsPassedRoundItToATeammateWhoShootsItOnAtOnce
   EXPECT_FALSE(rate_redirect(scene.situation(), 1, params));
 }
 
+/// Division B, our kickoff may be taken: the kicker (1) behind the ball on the centre mark, the wings (2 on +y,
+/// 3 on -y) beside the centre circle in our half, a defender (4); their robots out of the circle in their half.
+Scene kickoff_scene() {
+  Scene scene({0.0, 0.0});
+  scene.s.restart_kicker = 1u;
+  scene.robots = {robot_at({-0.12, 0.0}, 0, 1), robot_at({-0.35, 1.2}, 0, 2), robot_at({-0.35, -1.2}, 0, 3),
+                  robot_at({-2.5, 0.0}, 0, 4)};
+  scene.enemies = {robot_at({0.7, 0.0}, M_PI, 7), robot_at({1.5, -1.5}, M_PI, 8)};
+  return scene;
+}
+
+TEST(TeamPlay, AKickoffIsPassedToAnOpenWingWhoWaitsForItInOurHalf) {
+  Scene scene = kickoff_scene();
+  scene.enemies.push_back(robot_at({0.1, 0.65}, M_PI, 9));  // beside the +y wing's lane
+  TeamPlayMemory memory;
+  TeamIntents out;
+  kickoff_set_play(scene.situation(), memory, out);
+  ASSERT_TRUE(memory.pass);
+  EXPECT_EQ(memory.pass->passer, 1u);
+  EXPECT_EQ(memory.pass->receiver, 3u);  // the open wing
+  EXPECT_FALSE(memory.pass->one_touch);
+  EXPECT_LT(memory.pass->point.x(), 0.0);
+  EXPECT_EQ(out.robots[1].tactic, "kickoff_pass");
+  EXPECT_EQ(out.robots[1].skill, "pass");
+  EXPECT_EQ(out.robots[3].tactic, "kickoff_receive");
+  EXPECT_LT(out.robots[3].target.x(), 0.0);  // it stays in our half until the ball is in play
+  EXPECT_FALSE(out.robots[2].active);
+  // Still being set up a tick later: the same pass.
+  scene.s.now = 0.01;
+  TeamIntents next;
+  kickoff_set_play(scene.situation(), memory, next);
+  ASSERT_TRUE(memory.pass);
+  EXPECT_EQ(memory.pass->receiver, 3u);
+  EXPECT_EQ(next.robots[1].tactic, "kickoff_pass");
+}
+
+TEST(TeamPlay, AKickoffWithNoOpenWingOrNotKickedInTimeIsTheStraightShot) {
+  {
+    Scene scene = kickoff_scene();
+    scene.enemies.push_back(robot_at({0.1, 0.65}, M_PI, 9));   // in front of both wings
+    scene.enemies.push_back(robot_at({0.1, -0.65}, M_PI, 10));
+    TeamPlayMemory memory;
+    TeamIntents out;
+    kickoff_set_play(scene.situation(), memory, out);
+    EXPECT_FALSE(memory.pass);
+    ASSERT_TRUE(memory.restart);
+    EXPECT_TRUE(memory.restart->shoot);
+    EXPECT_FALSE(out.robots[1].active);  // the kickoff play's straight shot stands
+  }
+  Scene scene = kickoff_scene();
+  TeamPlayMemory memory;
+  const TeamPlayParams params;
+  for (double t = 0; t <= params.kickoff_set_up_timeout; t += 0.01) {
+    scene.s.now = t;
+    TeamIntents out;
+    kickoff_set_play(scene.situation(), memory, out);
+    ASSERT_TRUE(memory.pass) << t;
+  }
+  scene.s.now = params.kickoff_set_up_timeout + 0.02;
+  TeamIntents out;
+  kickoff_set_play(scene.situation(), memory, out);
+  EXPECT_FALSE(memory.pass);
+  EXPECT_FALSE(out.robots[1].active);
+}
+
 TEST(TeamPlay, AHolderFacingAwayFromItsOpenTeammateTurnsWithTheBallBeforePassing) {
   Scene scene({1.0, 2.5});
   scene.s.possession = wm::Possession::kFriendly;
@@ -242,6 +307,25 @@ TEST(TeamPlay, AHolderFacingAwayFromItsOpenTeammateTurnsWithTheBallBeforePassing
   EXPECT_EQ(out.robots[1].skill, "turn_with_ball");
   EXPECT_TRUE(out.robots[1].dribble);
   EXPECT_NEAR(out.robots[1].orientation, std::atan2(-2.5, 2.0), 1e-6);  // towards the teammate
+}
+
+TEST(TeamPlay, AnAttackerHoldingTheBallOnTheEdgeOfTheirDefenseAreaDoesNotTurnWithIt) {
+  // Division B: the ball 2 cm in front of their defense area (its front at x = 3.5), at the attacker's
+  // dribbler, the attacker facing 1 rad off their goal. Turning with the ball would drag it into the area.
+  for (const double x : {3.48, 2.5}) {
+    Scene scene({x, -0.06});
+    scene.s.possession = wm::Possession::kFriendly;
+    const double facing = 1.0;
+    const Vec2 at = scene.s.ball - Vec2(std::cos(facing), std::sin(facing)) * 0.12;
+    scene.robots = {robot_at(at, facing, 1)};
+    TeamPlayMemory memory;
+    const TeamIntents out = attacker_plays(scene, memory);
+    if (x > 3.0) {
+      EXPECT_NE(out.robots[1].skill, "turn_with_ball");
+    } else {
+      EXPECT_EQ(out.robots[1].skill, "turn_with_ball");  // away from the area it turns with the ball as before
+    }
+  }
 }
 
 TEST(StableAssigner, GivenCostsAreAssignedOptimallyAndKeptUnlessClearlyCheaper) {

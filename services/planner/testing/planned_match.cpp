@@ -15,6 +15,7 @@ PlannerConfig planner_config(TeamColor team, const PlannedMatchOptions& options)
   config.motion = options.motion;
   config.strategy = team == TeamColor::kBlue ? options.blue_strategy : options.yellow_strategy;
   config.free_kick = team == TeamColor::kBlue ? options.blue_free_kick : options.yellow_free_kick;
+  config.kickoff = team == TeamColor::kBlue ? options.blue_kickoff : options.yellow_kickoff;
   config.actuation_latency = options.actuation_latency;
   config.default_field = options.field;
   return config;

@@ -50,6 +50,8 @@ struct PlannedMatchOptions {
   Strategy yellow_strategy = Strategy::kBase;
   FreeKickPlay blue_free_kick = FreeKickPlay::kShot;  // each team's own free kicks (the base strategy's)
   FreeKickPlay yellow_free_kick = FreeKickPlay::kShot;
+  KickoffPlay blue_kickoff = PlannerConfig().kickoff;  // each team's own kickoffs (the base strategy's)
+  KickoffPlay yellow_kickoff = PlannerConfig().kickoff;
 };
 
 /// The `strict_ai` profile's rules (every foul refereed, cards, defense areas, no progress) for matches that

@@ -40,9 +40,6 @@ const ObservedRobot* nearest_within(const std::vector<ObservedRobot>& robots, do
 bool is_direct_free(Command command) {
   return command == Command::kDirectFreeYellow || command == Command::kDirectFreeBlue;
 }
-bool is_penalty(Command command) {
-  return command == Command::kPreparePenaltyYellow || command == Command::kPreparePenaltyBlue;
-}
 
 /// The stage the match goes to when `stage` ends; `drawn`: the score is level.
 std::optional<Stage> stage_after(Stage stage, bool extra_time, bool drawn) {

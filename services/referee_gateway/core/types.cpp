@@ -186,6 +186,10 @@ bool is_kickoff(Command command) {
   return command == Command::kPrepareKickoffYellow || command == Command::kPrepareKickoffBlue;
 }
 
+bool is_penalty(Command command) {
+  return command == Command::kPreparePenaltyYellow || command == Command::kPreparePenaltyBlue;
+}
+
 bool is_free_kick(Command command) {
   return command == Command::kDirectFreeYellow || command == Command::kDirectFreeBlue ||
          command == Command::kIndirectFreeYellow || command == Command::kIndirectFreeBlue;

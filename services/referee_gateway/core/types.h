@@ -157,6 +157,8 @@ std::string_view to_string(GameEventType type);
 std::optional<TeamColor> team_of(Command command);
 /// PREPARE_KICKOFF of either team.
 bool is_kickoff(Command command);
+/// PREPARE_PENALTY of either team.
+bool is_penalty(Command command);
 /// A free kick of either team: DIRECT_FREE, or INDIRECT_FREE (no longer in the rules, a free kick all the same).
 bool is_free_kick(Command command);
 

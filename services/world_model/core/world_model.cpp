@@ -70,7 +70,7 @@ void WorldModel::on_detection(const DetectionFrame& frame, time::Timestamp now) 
   update_ball(frame.camera_id, frame.balls, t);
   update_possession(t);
   drop_lost_tracks(t);
-  if (ball_.initialised()) game_.update_ball(ball_.predict_state(t).head<2>());
+  if (ball_.initialised()) game_.update_ball(ball_.predict_state(t).head<2>(), t);
 
   if (t >= stamp_.capture_time) {
     stamp_.capture_time = t;
