@@ -226,34 +226,32 @@ bt::NodeStatus set_up_the_free_kick(const Situation& s, TeamPlayMemory& m, TeamI
   free_kick_set_play(s, m, out);
   return bt::NodeStatus::kSuccess;
 }
-
-/// Our free kick: the kicker's straight shot; with FreeKickPlay::kRedirect the base strategy plays it as a set
-/// play where one rates better (free_kick_set_play).
-bt::NodePtr our_free_kick_play(const PlannerConfig& config) {
-  if (config.strategy != Strategy::kBase || config.free_kick != FreeKickPlay::kRedirect) {
-    return run("OurFreeKick", play_our_free_kick);
-  }
-  return bt::sequence("OurFreeKick", {
-      run("FreeKickFormation", play_our_free_kick),
-      strategy_step("FreeKickSetPlay", set_up_the_free_kick),
-  });
-}
-
 bt::NodeStatus set_up_the_kickoff(const Situation& s, TeamPlayMemory& m, TeamIntents& out, std::uint32_t&) {
   kickoff_set_play(s, m, out);
   return bt::NodeStatus::kSuccess;
 }
 
-/// Our kickoff: the kicker's straight shot; with KickoffPlay::kPass the base strategy passes it to a teammate
-/// where a pass rates (kickoff_set_play).
-bt::NodePtr our_kickoff_play(const PlannerConfig& config) {
-  if (config.strategy != Strategy::kBase || config.kickoff != KickoffPlay::kPass) {
-    return run("OurKickoff", play_our_kickoff);
-  }
-  return bt::sequence("OurKickoff", {
-      run("KickoffFormation", play_our_kickoff),
-      strategy_step("KickoffSetPlay", set_up_the_kickoff),
+/// Our restart `name`: its play (the kicker's straight shot, the others' formation); `with_set_play`: then the
+/// base strategy's set play, which takes the kicker and its receiver over where it rates a pass.
+bt::NodePtr our_restart(const std::string& name, PlayFunction play, bool with_set_play, StrategyBody set_play) {
+  if (!with_set_play) return run("Our" + name, play);
+  return bt::sequence("Our" + name, {
+      run(name + "Formation", play),
+      strategy_step(name + "SetPlay", set_play),
   });
+}
+
+/// Our free kick: with FreeKickPlay::kRedirect the base strategy's set play (free_kick_set_play).
+bt::NodePtr our_free_kick_play(const PlannerConfig& config) {
+  return our_restart("FreeKick", play_our_free_kick,
+                     config.strategy == Strategy::kBase && config.free_kick == FreeKickPlay::kRedirect,
+                     set_up_the_free_kick);
+}
+
+/// Our kickoff: with KickoffPlay::kPass the base strategy's set play (kickoff_set_play).
+bt::NodePtr our_kickoff_play(const PlannerConfig& config) {
+  return our_restart("Kickoff", play_our_kickoff,
+                     config.strategy == Strategy::kBase && config.kickoff == KickoffPlay::kPass, set_up_the_kickoff);
 }
 
 bt::NodePtr strategy_tree(Strategy strategy) {

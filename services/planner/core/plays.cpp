@@ -371,8 +371,11 @@ void stop_with_next(const Situation& s, PlayMemory& memory, TeamIntents& out, co
 }
 
 /// Kickoff: every robot but the kicker in our half and outside the centre circle (targets).
+/// m beyond our half and the centre circle a robot's centre keeps before a kickoff is in play.
+double kickoff_margin(const Situation& s) { return radius(s) + s.config->keep_away_margin; }
+
 void keep_kickoff_legal(const Situation& s, TeamIntents& out, std::optional<std::uint32_t> kicker) {
-  const double margin = radius(s) + s.config->keep_away_margin;
+  const double margin = kickoff_margin(s);
   const double circle = s.field.size().center_circle_radius + margin;
   for (const wm::RobotState& robot : s.robots) {
     if (kicker && robot.id == *kicker) continue;
@@ -435,6 +438,11 @@ std::optional<std::uint32_t> take_prepared_kick(const Situation& s, PlayMemory& 
 }
 
 }  // namespace
+
+bool legal_before_our_kickoff(const Situation& s, const Vec2& p) {
+  const double margin = kickoff_margin(s);
+  return p.x() <= -margin && p.norm() >= s.field.size().center_circle_radius + margin;
+}
 
 const wm::RobotState* find_robot(const Situation& s, std::uint32_t id) {
   for (const wm::RobotState& robot : s.robots) {

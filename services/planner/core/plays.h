@@ -109,6 +109,10 @@ void write_intent(const Situation& s, TeamIntents& out, std::uint32_t id, const 
 /// The attacker's shot: the shoot skill (it gets behind the ball, then kicks at the open part of the goal).
 void strategy_approach(const Situation& s, std::uint32_t attacker, TeamIntents& out);
 
+/// Whether a robot other than our kicker may stand at `p` before our kickoff is in play: in our half and out
+/// of the centre circle, its whole body with our keep-away margin (keep_kickoff_legal moves targets there).
+bool legal_before_our_kickoff(const Situation& s, const Vec2& p);
+
 /// Robot state by id, nullptr if not visible.
 const wm::RobotState* find_robot(const Situation& s, std::uint32_t id);
 

@@ -229,6 +229,15 @@ double arrival_speed(const TeamPlayMemory& m) {
   return m.pass && m.pass->one_touch ? m.params.redirect_arrival_speed : m.params.arrival_speed;
 }
 
+/// m, passer centre to ball centre within which the ball is at the passer's dribbler.
+double passer_contact(const Situation& s) { return s.config->robot_radius + s.field.size().ball_radius + kKickContact; }
+
+/// Notes when the ball of the pass being set up was last at its passer's dribbler (pass_in_progress tells a
+/// kick by the passer from a ball somebody else played that way).
+void note_ball_at_passer(const Situation& s, PassIntent& pass, const wm::RobotState& passer) {
+  if ((s.ball - passer.position).norm() < passer_contact(s)) pass.ball_at_passer = s.now;
+}
+
 /// How the pass being set up is re-rated every tick: kept while it is still possible at all (hysteresis), called
 /// off once an opponent could reach its line first or stands in the ball's path.
 TeamPlayParams still_possible(const TeamPlayMemory& m) {
@@ -401,10 +410,9 @@ bool pass_in_progress(const Situation& s, TeamPlayMemory& m) {
   if (pass.phase == PassIntent::Phase::kSetUp) {
     // Kicked by the passer: the ball was at its dribbler a moment ago and now runs along the pass (not a ball
     // somebody else played that way).
-    const double at_dribbler = s.config->robot_radius + s.field.size().ball_radius + kKickContact;
-    if ((s.ball - passer->position).norm() < at_dribbler) pass.ball_at_passer = s.now;
+    note_ball_at_passer(s, pass, *passer);
     const Vec2 along = geom::normalized_or(pass.point - passer->position, Vec2(1, 0));
-    const bool leaving = speed > kKickedSpeed && (s.ball - passer->position).norm() >= at_dribbler;
+    const bool leaving = speed > kKickedSpeed && (s.ball - passer->position).norm() >= passer_contact(s);
     const bool from_passer = pass.ball_at_passer && s.now - *pass.ball_at_passer < kKickRecent;
     const bool on_line = s.ball_velocity.dot(along) > speed * std::cos(kKickAngle);
     if (leaving && from_passer && on_line) {
@@ -539,92 +547,85 @@ struct PassEnds {
   const wm::RobotState* receiver = nullptr;
 };
 
-/// The set play's pass (m.pass), re-checked every tick until the kick: its passer (still the restart's
-/// kicker) and receiver on the field, set up within `set_up_timeout` of the restart's first tick and still
-/// possible; nullopt when the set play is off. Keeps the pass's set-up clock at the restart's last tick (once
-/// the ball is in play the dynamic pass's own timeout counts from there) and notes the ball at the passer.
-std::optional<PassEnds> restart_pass_holds(const Situation& s, TeamPlayMemory& m, std::uint32_t kicker,
-                                           double set_up_timeout) {
+/// One tick of our restart's set play up to the kick (the restart's kicker named, the ball seen): on the
+/// restart's first tick `choose()` gives the pass (nullopt: no set play); every tick the pass is re-checked:
+/// its passer (still the kicker) and receiver on the field, set up within `set_up_timeout` of the restart's
+/// first tick and still possible. Returns its ends while the set play is on; otherwise the kicker's straight
+/// shot stands (RestartPlay::shoot, for the rest of the restart). Keeps the pass's set-up clock at the
+/// restart's last tick (once the ball is in play the dynamic pass's own timeout counts from there).
+template <typename Choose>
+std::optional<PassEnds> set_play_pass(const Situation& s, TeamPlayMemory& m, double set_up_timeout,
+                                      Choose choose) {
+  if (!s.restart_kicker || !s.ball_known) return std::nullopt;
+  const std::uint32_t kicker = *s.restart_kicker;
+  RestartPlay& restart = restart_play(s, m);
+  if (restart.shoot) return std::nullopt;
+  const auto give_up = [&]() -> std::optional<PassEnds> {
+    restart.shoot = true;
+    m.pass.reset();
+    return std::nullopt;
+  };
+  if (!m.pass) {
+    m.pass = choose(kicker);
+    if (!m.pass) return give_up();
+  }
   PassIntent& pass = *m.pass;
   const PassEnds ends{find_robot(s, pass.passer), find_robot(s, pass.receiver)};
-  if (!ends.passer || !ends.receiver || pass.passer != kicker || s.now - m.restart->since > set_up_timeout ||
+  if (!ends.passer || !ends.receiver || pass.passer != kicker || s.now - restart.since > set_up_timeout ||
       !rate_pass(s, pass.receiver, pass.point, still_possible(m))) {
-    return std::nullopt;
+    return give_up();
   }
   pass.since = s.now;
-  const double at_dribbler = s.config->robot_radius + s.field.size().ball_radius + kKickContact;
-  if ((s.ball - ends.passer->position).norm() < at_dribbler) pass.ball_at_passer = s.now;
+  note_ball_at_passer(s, pass, *ends.passer);
   return ends;
 }
 
 }  // namespace
 
 void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
-  if (!s.restart_kicker || !s.ball_known) return;
-  const std::uint32_t kicker = *s.restart_kicker;
   const TeamPlayParams& params = m.params;
-  RestartPlay& restart = restart_play(s, m);
-  if (restart.shoot) return;
-  const auto give_up = [&] {
-    restart.shoot = true;
-    m.pass.reset();
-  };
-  if (!m.pass) {
-    const std::optional<PassOption> option = rate_redirect(s, kicker, params);
-    if (!option) return give_up();
-    m.pass = PassIntent{.passer = kicker, .receiver = option->receiver, .point = option->point, .since = s.now,
-                        .one_touch = true};
-  }
-  const std::optional<PassEnds> ends = restart_pass_holds(s, m, kicker, params.redirect_set_up_timeout);
-  if (!ends) return give_up();
+  const std::optional<PassEnds> ends =
+      set_play_pass(s, m, params.redirect_set_up_timeout, [&](std::uint32_t kicker) -> std::optional<PassIntent> {
+        const std::optional<PassOption> option = rate_redirect(s, kicker, params);
+        if (!option) return std::nullopt;
+        return PassIntent{.passer = kicker, .receiver = option->receiver, .point = option->point, .since = s.now,
+                          .one_touch = true};
+      });
+  if (!ends) return;
   const PassIntent& pass = *m.pass;
-  const wm::RobotState* passer = ends->passer;
-  const wm::RobotState* receiver = ends->receiver;
-  const MotionIntent wait = redirect_at(s, m, *receiver);
-  write_intent(s, out, receiver->id, as_role(wait, Role::kReceiver, "free_kick_redirect"));
+  const wm::RobotState& passer = *ends->passer;
+  const wm::RobotState& receiver = *ends->receiver;
+  const MotionIntent wait = redirect_at(s, m, receiver);
+  write_intent(s, out, receiver.id, as_role(wait, Role::kReceiver, "free_kick_redirect"));
   // The kicker passes once the receiver stands still at its spot; until then it waits behind the ball,
   // facing the pass, clear of it (a touch now puts the ball in play).
-  const bool ready = (receiver->position - wait.target).norm() < kRedirectInPlace &&
-                     receiver->velocity.norm() < kRedirectStill;
+  const bool ready = (receiver.position - wait.target).norm() < kRedirectInPlace &&
+                     receiver.velocity.norm() < kRedirectStill;
   const Vec2 u = geom::normalized_or(pass.point - s.ball, Vec2(1, 0));
-  MotionIntent kick = ready ? planner::pass(s, *passer, {.receiver = pass.point, .arrival_speed = arrival_speed(m)})
-                            : go_to_point(s, *passer, {.point = s.ball - u * (dribbler_distance(s) + kRedirectStaging),
-                                                       .orientation = geom::angle_of(u).radians()});
+  MotionIntent kick = ready ? planner::pass(s, passer, {.receiver = pass.point, .arrival_speed = arrival_speed(m)})
+                            : go_to_point(s, passer, {.point = s.ball - u * (dribbler_distance(s) + kRedirectStaging),
+                                                      .orientation = geom::angle_of(u).radians()});
   kick.avoid_ball_radius = ready ? 0.0 : dribbler_distance(s) + kRedirectStaging / 2;
-  write_intent(s, out, kicker, as_role(kick, Role::kAttacker, "free_kick_pass"));
+  write_intent(s, out, passer.id, as_role(kick, Role::kAttacker, "free_kick_pass"));
 }
 
 void kickoff_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
-  if (!s.restart_kicker || !s.ball_known) return;
-  const std::uint32_t kicker = *s.restart_kicker;
-  const TeamPlayParams& params = m.params;
-  RestartPlay& restart = restart_play(s, m);
-  if (restart.shoot) return;
-  const auto give_up = [&] {
-    restart.shoot = true;
-    m.pass.reset();
-  };
-  // Until the ball is in play every robot but the kicker stays in our half, out of the centre circle.
-  const double margin = s.config->robot_radius + s.config->keep_away_margin;
-  const auto in_our_half = [&](const Vec2& point) {
-    return point.x() <= -margin && point.norm() >= s.field.size().center_circle_radius + margin;
-  };
-  if (!m.pass) {
-    const std::vector<PassOption> options = rate_passes(s, kicker, params);
-    const auto best = std::find_if(options.begin(), options.end(),
-                                   [&](const PassOption& option) { return in_our_half(option.point); });
-    if (best == options.end()) return give_up();
-    m.pass = PassIntent{.passer = kicker, .receiver = best->receiver, .point = best->point, .since = s.now};
-  }
-  const std::optional<PassEnds> ends = restart_pass_holds(s, m, kicker, params.kickoff_set_up_timeout);
-  if (!ends) return give_up();
+  const std::optional<PassEnds> ends =
+      set_play_pass(s, m, m.params.kickoff_set_up_timeout, [&](std::uint32_t kicker) -> std::optional<PassIntent> {
+        // Until the ball is in play the receiver, as every robot but the kicker, stays where the kickoff allows.
+        const std::vector<PassOption> options = rate_passes(s, kicker, m.params);
+        const auto best = std::find_if(options.begin(), options.end(), [&](const PassOption& option) {
+          return legal_before_our_kickoff(s, option.point);
+        });
+        if (best == options.end()) return std::nullopt;
+        return PassIntent{.passer = kicker, .receiver = best->receiver, .point = best->point, .since = s.now};
+      });
+  if (!ends) return;
   const PassIntent& pass = *m.pass;
-  const wm::RobotState* passer = ends->passer;
-  const wm::RobotState* receiver = ends->receiver;
-  write_intent(s, out, receiver->id,
-               as_role(receive(s, *receiver, {.point = pass.point}), Role::kReceiver, "kickoff_receive"));
-  write_intent(s, out, kicker,
-               as_role(planner::pass(s, *passer, {.receiver = pass.point, .arrival_speed = arrival_speed(m)}),
+  write_intent(s, out, ends->receiver->id,
+               as_role(receive(s, *ends->receiver, {.point = pass.point}), Role::kReceiver, "kickoff_receive"));
+  write_intent(s, out, ends->passer->id,
+               as_role(planner::pass(s, *ends->passer, {.receiver = pass.point, .arrival_speed = arrival_speed(m)}),
                        Role::kAttacker, "kickoff_pass"));
 }
 
