@@ -43,17 +43,19 @@ namespace {
 using ssl::TeamColor;
 using ssl::planner::FreeKickPlay;
 using ssl::planner::KickoffPlay;
+using ssl::planner::PenaltyPlay;
 using ssl::planner::Strategy;
 using ssl::planner::testing::PlannedMatch;
 using ssl::referee::GameEventType;
 
 /// A side of a pairing: a strategy, and for base how it takes its own restarts when not as configured by
-/// default: "base+redirect" (the free-kick set play), "base+kickoff_shot" (kickoffs shot straight), both:
-/// "base+redirect+kickoff_shot".
+/// default: "base+redirect" (the free-kick set play), "base+kickoff_shot" (kickoffs shot straight),
+/// "base+penalty_shot" (penalties shot from the mark), or several: "base+redirect+kickoff_shot".
 struct Side {
   Strategy strategy = Strategy::kBase;
   FreeKickPlay free_kick = ssl::planner::PlannerConfig().free_kick;
   KickoffPlay kickoff = ssl::planner::PlannerConfig().kickoff;
+  PenaltyPlay penalty = ssl::planner::PlannerConfig().penalty;
 };
 
 std::optional<Side> side_named(const std::string& name) {
@@ -75,6 +77,8 @@ std::optional<Side> side_named(const std::string& name) {
       side.free_kick = FreeKickPlay::kRedirect;
     } else if (modifier == "kickoff_shot") {
       side.kickoff = KickoffPlay::kShot;
+    } else if (modifier == "penalty_shot") {
+      side.penalty = PenaltyPlay::kShot;
     } else {
       return std::nullopt;
     }
@@ -155,7 +159,9 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
                       .blue_free_kick = a_is_blue ? a.free_kick : b.free_kick,
                       .yellow_free_kick = a_is_blue ? b.free_kick : a.free_kick,
                       .blue_kickoff = a_is_blue ? a.kickoff : b.kickoff,
-                      .yellow_kickoff = a_is_blue ? b.kickoff : a.kickoff});
+                      .yellow_kickoff = a_is_blue ? b.kickoff : a.kickoff,
+                      .blue_penalty = a_is_blue ? a.penalty : b.penalty,
+                      .yellow_penalty = a_is_blue ? b.penalty : a.penalty});
   ssl::sslctl::MatchReportBuilder report;
   report.set_field(field.field_length, field.goal_width);
   std::vector<ssl::sslctl::PlayAccount::Robot> robots;
@@ -399,8 +405,9 @@ int main(int argc, char** argv) {
       std::printf(
           "usage: match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...] [--tactics]\n"
           "  plays N seeded whole 6 v 6 matches (default 20; seeds S, S+1, ...) per pairing of strategies (base,\n"
-          "  base+redirect: base with the free-kick set play, base+kickoff_shot: kickoffs shot straight, both:\n"
-          "  base+redirect+kickoff_shot, ball_chaser, wander; default base:ball_chaser and base:base) in lockstep\n"
+          "  base+redirect: base with the free-kick set play, base+kickoff_shot: kickoffs shot straight,\n"
+          "  base+penalty_shot: penalties shot from the mark, or several: base+redirect+kickoff_shot; ball_chaser,\n"
+          "  wander; default base:ball_chaser and base:base) in lockstep\n"
           "  under the strict_ai rules,\n"
           "  halves of --half s of playing time (default 300), J matches at a time (default: the cores), and\n"
           "  prints goals, passes, shots, possession and game events per strategy and match, with the budgets;\n"
@@ -421,7 +428,7 @@ int main(int argc, char** argv) {
       const std::string text = value();
       const std::size_t colon = text.find(':');
       if (colon == std::string::npos || !side_named(text.substr(0, colon)) || !side_named(text.substr(colon + 1))) {
-        usage_error("--pairing takes A:B, each base (+redirect, +kickoff_shot), ball_chaser or wander");
+        usage_error("--pairing takes A:B, each base (+redirect, +kickoff_shot, +penalty_shot), ball_chaser or wander");
       }
       pairings.push_back({text.substr(0, colon), text.substr(colon + 1)});
     } else {

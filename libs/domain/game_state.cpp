@@ -28,6 +28,7 @@ void GameState::update(const RefereeInfo& referee, const TeamFrame& frame, const
     return;
   }
   command_ = referee.command;
+  penalty_in_play_ = false;
   using C = RefereeCommand;
   constexpr TeamColor kB = TeamColor::kBlue;
   constexpr TeamColor kY = TeamColor::kYellow;
@@ -85,6 +86,7 @@ void GameState::update_ball(const Vec2& ball, time::Timestamp now) {
   }
   if (!moved_since_) moved_since_ = now;
   if (time::to_seconds(now - *moved_since_) >= kBallMovedHold) {
+    penalty_in_play_ = restart_ == Restart::kPenalty;
     restart_ = Restart::kNone;
     pending_ = ready_ = false;
     playing_ = true;

@@ -63,6 +63,10 @@ class GameState {
   bool is_our_kickoff() const { return is_kickoff() && ours_; }
   bool is_their_kickoff() const { return is_kickoff() && !ours_; }
   bool is_our_penalty() const { return is_penalty() && ours_; }
+  /// A penalty whose ball is in play and which no new command ended yet (goal, STOP): its attacker may
+  /// touch the ball again until the penalty is decided.
+  bool is_our_penalty_in_play() const { return penalty_in_play_ && ours_; }
+  bool is_their_penalty_in_play() const { return penalty_in_play_ && !ours_; }
   bool is_their_penalty() const { return is_penalty() && !ours_; }
   bool is_our_free_kick() const { return is_free_kick() && ours_; }
   bool is_their_free_kick() const { return is_free_kick() && !ours_; }
@@ -94,6 +98,7 @@ class GameState {
   bool pending_ = false;
   bool ready_ = false;
   bool playing_ = false;
+  bool penalty_in_play_ = false;
   std::optional<Vec2> ball_at_ready_;  // vision frame
   std::optional<time::Timestamp> moved_since_;  // the ball beyond kBallMovedDistance since
   std::optional<Vec2> last_ball_;      // vision frame

@@ -128,6 +128,46 @@ TEST(WorldModelGameState, ARestartIsTakenOnlyOnceTheBallStaysMovedNotOnAJumpOfIt
   EXPECT_FALSE(f.game.must_keep_distance_from_ball());
 }
 
+TEST(WorldModelGameState, APenaltyIsInPlayFromItsKickUntilTheNextCommand) {
+  const auto at = [](double s) { return kKick + time::duration_from_seconds(s); };
+  for (const TeamColor us : {TeamColor::kBlue, TeamColor::kYellow}) {
+    Fixture f(us);
+    f.send(C::kStop);
+    f.send(us == TeamColor::kBlue ? C::kPreparePenaltyBlue : C::kPreparePenaltyYellow);
+    f.send(C::kNormalStart);
+    f.game.update_ball({0.0, 0.0}, at(0.0));
+    EXPECT_TRUE(f.game.is_our_penalty());
+    EXPECT_FALSE(f.game.is_our_penalty_in_play());
+    f.game.update_ball({0.1, 0.0}, at(0.01));
+    f.game.update_ball({0.2, 0.0}, at(0.01 + GameState::kBallMovedHold));
+    EXPECT_TRUE(f.game.is_playing());
+    EXPECT_FALSE(f.game.is_penalty());
+    EXPECT_TRUE(f.game.is_our_penalty_in_play());
+    EXPECT_FALSE(f.game.is_their_penalty_in_play());
+    f.game.update_ball({1.5, 0.0}, at(3.0));
+    EXPECT_TRUE(f.game.is_our_penalty_in_play());
+    f.send(C::kStop);
+    EXPECT_FALSE(f.game.is_our_penalty_in_play());
+    // Their penalty, and a kickoff taken the same way, are not ours.
+    f.send(us == TeamColor::kBlue ? C::kPreparePenaltyYellow : C::kPreparePenaltyBlue);
+    f.send(C::kNormalStart);
+    f.game.update_ball({0.0, 0.0}, at(10.0));
+    f.game.update_ball({0.1, 0.0}, at(10.0 + 0.01));
+    f.game.update_ball({0.2, 0.0}, at(10.0 + 0.01 + GameState::kBallMovedHold));
+    EXPECT_TRUE(f.game.is_their_penalty_in_play());
+    EXPECT_FALSE(f.game.is_our_penalty_in_play());
+    f.send(C::kStop);
+    f.send(us == TeamColor::kBlue ? C::kPrepareKickoffBlue : C::kPrepareKickoffYellow);
+    f.send(C::kNormalStart);
+    f.game.update_ball({0.0, 0.0}, at(20.0));
+    f.game.update_ball({0.1, 0.0}, at(20.0 + 0.01));
+    f.game.update_ball({0.2, 0.0}, at(20.0 + 0.01 + GameState::kBallMovedHold));
+    EXPECT_TRUE(f.game.is_playing());
+    EXPECT_FALSE(f.game.is_our_penalty_in_play());
+    EXPECT_FALSE(f.game.is_their_penalty_in_play());
+  }
+}
+
 TEST(WorldModelGameState, BallPlacementPositionIsInTheTeamFrame) {
   Fixture f(TeamColor::kYellow);
   f.frame = TeamFrame::make(TeamColor::kYellow, /*blue_on_positive_half=*/false);  // yellow defends +x

@@ -36,6 +36,10 @@ Fields<PlannerConfig> core_fields() {
           .values({{"pass", KickoffPlay::kPass}, {"shot", KickoffPlay::kShot}})
           .doc("the base strategy's own kickoffs: pass (to a teammate waiting in our half, where one rates, "
                "else the shot) or shot (at their goal)"),
+      config::optional_field("penalty", &PlannerConfig::penalty, PenaltyPlay::kAdvance)
+          .values({{"advance", PenaltyPlay::kAdvance}, {"shot", PenaltyPlay::kShot}})
+          .doc("the base strategy's own penalties: advance (the ball played on towards their goal, the kicker "
+               "running with it, shot from close in) or shot (from the mark)"),
       field("actuation_latency", &PlannerConfig::actuation_latency).unit("s").range(0, 0.2)
           .doc("from a tick until its command acts on the robot; trajectories plan from where the robot will be"),
       field("robot_radius", &PlannerConfig::robot_radius).unit("m").range(0.05, 0.2),

@@ -30,12 +30,14 @@ TEST(PlannerConfig, DeployedFileLoadsWithTheDocumentedDefaults) {
   EXPECT_DOUBLE_EQ(config->core.default_field.field_length, 12.0);
   EXPECT_EQ(config->core.free_kick, FreeKickPlay::kShot);
   EXPECT_EQ(config->core.kickoff, KickoffPlay::kPass);
+  EXPECT_EQ(config->core.penalty, PenaltyPlay::kAdvance);
 }
 
 TEST(PlannerConfig, OverridesApplyAndDerivedValuesFollow) {
   auto config = load_planner_config(
       deployed(), {"team=yellow", "tick_mode=fixed_rate", "tick_rate=50", "default_division=b",
-                   "planner.limits.max_speed=2.5", "planner.free_kick=redirect", "planner.kickoff=shot"});
+                   "planner.limits.max_speed=2.5", "planner.free_kick=redirect", "planner.kickoff=shot",
+                   "planner.penalty=shot"});
   ASSERT_TRUE(config) << config.error().message;
   EXPECT_EQ(config->core.team, TeamColor::kYellow);
   EXPECT_EQ(config->tick_mode, TickMode::kFixedRate);
@@ -43,6 +45,7 @@ TEST(PlannerConfig, OverridesApplyAndDerivedValuesFollow) {
   EXPECT_DOUBLE_EQ(config->core.limits.max_speed, 2.5);
   EXPECT_EQ(config->core.free_kick, FreeKickPlay::kRedirect);
   EXPECT_EQ(config->core.kickoff, KickoffPlay::kShot);
+  EXPECT_EQ(config->core.penalty, PenaltyPlay::kShot);
   EXPECT_DOUBLE_EQ(config->core.default_field.field_length, 9.0);
   EXPECT_DOUBLE_EQ(config->core.default_field.goal_width, 1.0);
   EXPECT_DOUBLE_EQ(config->core.default_field.goal_center_to_penalty_mark, 6.0);
@@ -68,6 +71,10 @@ TEST(PlannerConfig, BadValuesAreRejectedWithTheKeyNamed) {
   auto kickoff = load_planner_config(deployed(), {"planner.kickoff=chip"});
   ASSERT_FALSE(kickoff);
   EXPECT_NE(kickoff.error().message.find("kickoff"), std::string::npos) << kickoff.error().message;
+
+  auto penalty = load_planner_config(deployed(), {"planner.penalty=chip"});
+  ASSERT_FALSE(penalty);
+  EXPECT_NE(penalty.error().message.find("penalty"), std::string::npos) << penalty.error().message;
 
   auto unknown = load_planner_config(deployed(), {"tick_mod=fixed_rate"});
   EXPECT_FALSE(unknown);

@@ -149,8 +149,10 @@ struct RefereeEvent {
 /// returned in OUR team frame, and the ground truth after each tick with who touched the ball.
 class LockstepMatch {
  public:
-  /// Both teams play `ours` / `theirs` in normal play (the base strategy unless a scenario says otherwise).
-  LockstepMatch(const Case& c, std::uint64_t seed, Strategy ours = Strategy::kBase, Strategy theirs = Strategy::kBase)
+  /// Both teams play `ours` / `theirs` in normal play (the base strategy unless a scenario says otherwise);
+  /// we take our penalties with `our_penalty`.
+  LockstepMatch(const Case& c, std::uint64_t seed, Strategy ours = Strategy::kBase, Strategy theirs = Strategy::kBase,
+                PenaltyPlay our_penalty = PlannerConfig().penalty)
       : case_(c),
         side_(c.side),
         field_(c.field()),
@@ -161,7 +163,9 @@ class LockstepMatch {
                 .blue_on_positive_half = c.side.blue_on_positive_half,
                 .actuation_latency = PlannerConfig().actuation_latency,
                 .blue_strategy = c.side.us == TeamColor::kBlue ? ours : theirs,
-                .yellow_strategy = c.side.us == TeamColor::kBlue ? theirs : ours}) {
+                .yellow_strategy = c.side.us == TeamColor::kBlue ? theirs : ours,
+                .blue_penalty = c.side.us == TeamColor::kBlue ? our_penalty : PlannerConfig().penalty,
+                .yellow_penalty = c.side.us == TeamColor::kBlue ? PlannerConfig().penalty : our_penalty}) {
     refresh_truth();
   }
 
@@ -849,6 +853,93 @@ TEST_P(PlannerSimReferee, PenaltyPositionsHoldThenOurKickerShoots) {
                 "kicker " + Always::fmt(kicker_distance) + " m from the mark, closest other " +
                     Always::fmt(-max_behind) + " m behind, keeper off the line " +
                     Always::fmt(keeper_offset) + " m, shot after " + Always::fmt(shot.at()) + " s");
+}
+
+
+/// One penalty of ours taken with `play` (the rest as PenaltyPositionsHoldThenOurKickerShoots sets it up),
+/// run until it is decided or 10 s (the rules' time) after NORMAL_START. Checks the rules on our attacker
+/// while it plays the ball on: the ball never faster than the rules allow, no other robot of ours touches
+/// it before the shot, our attacker never touches it partly inside their defense area, no robot of ours
+/// dribbles it further than 1 m.
+struct PenaltyOutcome {
+  bool goal = false;
+  double decided_after = 0;  // s after NORMAL_START
+};
+PenaltyOutcome take_penalty(const Case& c, std::uint64_t seed, PenaltyPlay play, Always& speed, Always& others,
+                            Always& area, Always& dribble) {
+  LockstepMatch m(c, seed, Strategy::kBase, Strategy::kBase, play);
+  default_layout(m);
+  const double hl = m.half_length();
+  const sim::FieldGeometry& field = m.field();
+  m.place_ball({hl - field.goal_center_to_penalty_mark, 0});
+  const double start_at = kWarmUp + 5.0;
+  const RefereeCommand penalty = testing::command_for(Restart::kPenalty, c.side.us);
+  m.script({{kWarmUp, RefereeCommand::kStop, penalty}, {kWarmUp + 2.5, penalty}, {start_at, RefereeCommand::kNormalStart}});
+  while (m.time() < start_at) m.tick();
+  const std::uint32_t kicker = nearest(m.truth(), true)->id;
+  constexpr double kPenaltyShotSeen = 4.0;  // m/s
+  std::optional<Vec2> dribble_start;
+  bool shot = false;
+  while (m.time() < start_at + rules::kPenaltyTimeout) {
+    m.tick();
+    const Truth& truth = m.truth();
+    const double t = m.time();
+    if (truth.ball.x() > hl) return {.goal = std::abs(truth.ball.y()) < field.goal_width / 2, .decided_after = t - start_at};
+    if (std::abs(truth.ball.y()) > field.field_width / 2 || truth.ball.x() < -hl) return {.decided_after = t - start_at};
+    speed.require(truth.ball_velocity.norm() <= rules::kMaxBallSpeed, t,
+                  [&] { return "the ball at " + Always::fmt(truth.ball_velocity.norm()) + " m/s"; });
+    // The shot (faster than a played-on ball ever rolls): what follows is the keeper's save and play on.
+    shot = shot || truth.ball_velocity.norm() > kPenaltyShotSeen;
+    for (const TrueRobot& r : truth.robots) {
+      if (!r.ours || !r.touching || shot) continue;
+      others.require(r.id == kicker, t, [&] { return r.name() + " touched the ball"; });
+      const double clear = distance_to_opponent_defense_area(field, r);
+      area.require(clear >= kR, t, [&] { return "touched " + Always::fmt(clear) + " m from their defense area"; });
+    }
+    const std::optional<TrueRobot> holder = nearest(truth, true);
+    if (holder && holder->dribbler_contact) {
+      if (!dribble_start) dribble_start = truth.ball;
+    } else {
+      dribble_start.reset();
+    }
+    const double dribbled = dribble_start ? (truth.ball - *dribble_start).norm() : 0.0;
+    dribble.require(dribbled <= rules::kMaxDribblingDistance, t,
+                    [&] { return "dribbled " + Always::fmt(dribbled) + " m"; });
+  }
+  return {.decided_after = rules::kPenaltyTimeout};
+}
+
+/// The base strategy's penalty (PenaltyPlay::kAdvance: played on, shot from close in) against our keeper
+/// scores in at least 3 of 4 penalties, and more often than the shot from the mark (PenaltyPlay::kShot) in the
+/// same 4 (seeds 1-4, both keepers our own), within the rules checked by take_penalty.
+TEST_P(PlannerSimReferee, OurPenaltyPlayedOnAndShotFromCloseInScoresMoreThanTheShotFromTheMark) {
+  constexpr int kPenalties = 4;
+  Always speed{"our penalty: the ball never faster than the rules' 6.5 m/s"};
+  Always others{"our penalty: no robot of ours but the kicker touches the ball before the shot"};
+  Always area{"our penalty: our kicker touches the ball only wholly outside their defense area"};
+  Always dribble{"our penalty: no robot of ours dribbles the ball further than 1 m"};
+  Always unchecked{"the shot from the mark (not checked)"};
+  int advanced = 0;
+  int from_mark = 0;
+  double slowest = 0;
+  for (int k = 1; k <= kPenalties; ++k) {
+    const PenaltyOutcome played_on = take_penalty(param(), k, PenaltyPlay::kAdvance, speed, others, area, dribble);
+    if (played_on.goal) {
+      ++advanced;
+      slowest = std::max(slowest, played_on.decided_after);
+    }
+    if (take_penalty(param(), k, PenaltyPlay::kShot, unchecked, unchecked, unchecked, unchecked).goal) ++from_mark;
+  }
+  speed.report();
+  others.report();
+  area.report();
+  dribble.report();
+  EXPECT_GE(advanced, kPenalties - 1);
+  EXPECT_GT(advanced, from_mark);
+  print_figures("PenaltyScored", param(),
+                "played on and shot from close in " + std::to_string(advanced) + " of " + std::to_string(kPenalties) +
+                    " (slowest goal " + Always::fmt(slowest) + " s after NORMAL_START), from the mark " +
+                    std::to_string(from_mark) + " of " + std::to_string(kPenalties));
 }
 
 // ---- the keeper --------------------------------------------------------------------------------------------

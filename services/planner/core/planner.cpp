@@ -190,6 +190,18 @@ bt::NodeStatus take_the_pass(const Situation& s, TeamPlayMemory& m, TeamIntents&
   receive_pass(s, m, out);
   return bt::NodeStatus::kSuccess;
 }
+bool our_penalty_in_play(const Situation& s, TeamPlayMemory&) {
+  return s.config->penalty == PenaltyPlay::kAdvance && s.game->is_our_penalty_in_play();
+}
+bt::NodeStatus play_the_penalty(const Situation& s, TeamPlayMemory&, TeamIntents& out, std::uint32_t& attacker) {
+  const wm::RobotState* robot = find_robot(s, attacker);
+  if (!robot) return bt::NodeStatus::kFailure;
+  MotionIntent intent = penalty_attack(s, *robot);
+  intent.role = "attacker";
+  intent.tactic = "penalty";
+  write_intent(s, out, attacker, intent);
+  return bt::NodeStatus::kSuccess;
+}
 bt::NodeStatus play_the_ball(const Situation& s, TeamPlayMemory& m, TeamIntents& out, std::uint32_t& attacker) {
   attack(s, m, attacker, out);
   return bt::NodeStatus::kSuccess;
@@ -206,6 +218,11 @@ bt::NodePtr base_strategy() {
       strategy_step("ReadTheGame", read_the_game),
       strategy_step("AssignRoles", assign_the_roles),
       bt::succeeder(bt::reactive_selector("MainPlay", {
+          bt::reactive_sequence("Penalty", {
+              team_check("OurPenaltyInPlay?", our_penalty_in_play),
+              bt::condition("HasAttacker?", has_attacker, attacker_port),
+              strategy_step("PlayThePenalty", play_the_penalty),
+          }),
           bt::reactive_sequence("DynamicPass", {
               team_check("PassInProgress?", pass_in_progress),
               bt::parallel("PassAndReceive", bt::ParallelPolicy::kSuccessOnAll, {

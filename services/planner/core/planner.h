@@ -112,6 +112,10 @@ enum class FreeKickPlay { kShot, kRedirect };
 /// teammate waiting in our half where one rates, else the shot; kShot, the kicker shoots at their goal.
 enum class KickoffPlay { kShot, kPass };
 
+/// The base strategy's own penalties: kAdvance, penalty_attack (plays.h): the ball is played on and shot
+/// from close in; kShot, the kicker shoots from the mark.
+enum class PenaltyPlay { kShot, kAdvance };
+
 struct PlannerConfig {
   TeamColor team = TeamColor::kBlue;
   MotionLimits limits;
@@ -119,6 +123,7 @@ struct PlannerConfig {
   Strategy strategy = Strategy::kBase;
   FreeKickPlay free_kick = FreeKickPlay::kShot;  // the base strategy only
   KickoffPlay kickoff = KickoffPlay::kPass;      // the base strategy only
+  PenaltyPlay penalty = PenaltyPlay::kAdvance;   // the base strategy only
   // s from the planner's tick until its command acts on the robot (DDS, robot_link, radio): the trajectory
   // skill layer plans from where the last command will have taken the robot by then. world.state is
   // already predicted to now (world_model compensates the vision delay).

@@ -390,26 +390,17 @@ void keep_kickoff_legal(const Situation& s, TeamIntents& out, std::optional<std:
 /// m/s of a penalty shot: as hard as the rules allow (less a margin for the kicker's spread), so that the
 /// keeper has the least time.
 constexpr double kPenaltyKickSpeed = rules::kMaxBallSpeed - 0.5;
-/// The base strategy's penalty: a ball further than kPenaltyShotRange from their goal is first played on
-/// (the rules let the penalty's attacker touch it again) to kPenaltyAdvanceDistance in front of the goal, so
-/// that the shot comes from close in, where the keeper has a third of the time to react.
-constexpr double kPenaltyShotRange = 3.2;         // m, ball to their goal centre
-constexpr double kPenaltyAdvanceDistance = 2.4;   // m in front of their goal centre
-constexpr double kPenaltyAdvanceArrival = 0.25;   // m/s the ball still rolls at there
 
-/// Our restart's kick once it may be taken: a shot, a penalty as hard as the rules allow; the base strategy
-/// brings a distant penalty ball closer first. (A pass instead of a poor shot lost more balls than it kept:
-/// bench/match_series measured base 1.9 : 6.1 ball_chaser with it.)
+/// Our restart's kick once it may be taken: a shot, a penalty as hard as the rules allow; the base strategy's
+/// penalty (PenaltyPlay::kAdvance) is penalty_attack. (A pass instead of a poor shot lost more balls than it
+/// kept: bench/match_series measured base 1.9 : 6.1 ball_chaser with it.)
 void set_piece_kick(const Situation& s, std::uint32_t kicker, std::string_view tactic, TeamIntents& out) {
   const wm::RobotState* robot = find_robot(s, kicker);
   if (!robot) return;
   MotionIntent intent = shoot(s, *robot, {});
   if (tactic == "penalty") {
-    const Vec2 goal = s.field.their_goal_center();
-    const bool advance = s.config->strategy == Strategy::kBase && (goal - s.ball).norm() > kPenaltyShotRange;
-    intent = advance ? pass(s, *robot, {.receiver = goal - Vec2(kPenaltyAdvanceDistance, 0),
-                                        .arrival_speed = kPenaltyAdvanceArrival})
-                     : shoot(s, *robot, {.speed = kPenaltyKickSpeed});
+    const bool advance = s.config->strategy == Strategy::kBase && s.config->penalty == PenaltyPlay::kAdvance;
+    intent = advance ? penalty_attack(s, *robot) : shoot(s, *robot, {.speed = kPenaltyKickSpeed});
   }
   intent.role = "kicker";
   intent.tactic = tactic;
@@ -442,6 +433,19 @@ std::optional<std::uint32_t> take_prepared_kick(const Situation& s, PlayMemory& 
 bool legal_before_our_kickoff(const Situation& s, const Vec2& p) {
   const double margin = kickoff_margin(s);
   return p.x() <= -margin && p.norm() >= s.field.size().center_circle_radius + margin;
+}
+
+MotionIntent penalty_attack(const Situation& s, const wm::RobotState& kicker) {
+  const Vec2 goal = s.field.their_goal_center();
+  const double depth = s.field.size().penalty_area_depth;
+  const double range = depth + kPenaltyShotBeyondArea;
+  const Vec2 spot = goal - Vec2(depth + kPenaltyAdvanceBeyondArea, 0);
+  const Vec2 on = geom::normalized_or(spot - s.ball, Vec2(1, 0));
+  const bool rolling_on = s.ball_known && s.ball_velocity.dot(on) > kPenaltyRollingOn;
+  if ((goal - s.ball).norm() > range && !rolling_on) {
+    return pass(s, kicker, {.receiver = spot, .arrival_speed = kPenaltyAdvanceArrival});
+  }
+  return shoot(s, kicker, {.speed = kPenaltyKickSpeed, .max_distance = range});
 }
 
 const wm::RobotState* find_robot(const Situation& s, std::uint32_t id) {

@@ -29,6 +29,8 @@ constexpr double kCushionOffLine = 0.03;
 constexpr double kMarkLookahead = 0.05;
 /// m inside the post (beyond the ball's width) a shot at a gap beside the post aims.
 constexpr double kPostAim = 0.06;
+/// A gap of the goal mouth at least this fraction of the widest is as good a target (goal_opening).
+constexpr double kSimilarGap = 0.8;
 /// m between a robot touching the ball and their defense area (touching it partly inside is a foul).
 constexpr double kAreaTouchClearance = 0.02;
 /// m: a slow ball this close to the receiving point is fetched by the receiver.
@@ -60,11 +62,36 @@ MotionIntent hold(const Situation& s, const wm::RobotState& robot, MotionIntent 
   return intent;
 }
 
+/// m/s a robot closes on the ball it is about to touch (faster and it knocks the ball away).
+constexpr double kTouchClosingSpeed = 1.0;
+/// m/s: a ball rolling away along the approach this fast is followed (moving with it), not waited for.
+constexpr double kFollowAwaySpeed = 0.2;
+/// m from either defense area within which a rolling ball is not followed (close_on_ball).
+constexpr double kFollowAreaClearance = 0.4;
+
+/// The last part of the approach along `u` to a ball: closing at kTouchClosingSpeed on top of the speed the
+/// ball rolls away along `u` at, moving with a ball that rolls away (a cap of its own would leave the robot
+/// trailing a rolling ball, never touching it). Not near a defense area: moving with the ball is steering
+/// past the path search, which keeps the robot out of them. Not the kicker of our restart, which may not
+/// touch the ball again: a ball it set rolling (a push instead of its kick) it lets go, slower than the ball.
+void close_on_ball(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent& intent) {
+  const double away = s.ball_known ? std::max(0.0, s.ball_velocity.dot(u)) : 0.0;
+  const bool restart_kicker = s.restart_kicker && *s.restart_kicker == robot.id;
+  if (restart_kicker) {
+    intent.max_speed = std::min(intent.max_speed, away > kFollowAwaySpeed ? away / 2 : kTouchClosingSpeed);
+    return;
+  }
+  intent.max_speed = std::min(intent.max_speed, kTouchClosingSpeed + away);
+  const bool near_an_area = s.field.in_their_defense_area(s.ball, kFollowAreaClearance) ||
+                            s.field.in_our_defense_area(s.ball, kFollowAreaClearance);
+  if (away > kFollowAwaySpeed && !near_an_area) intent.target_velocity = s.ball_velocity;
+}
+
 /// Drive through the ball along `u` with the kicker armed at `speed`.
-void kick_through(const Situation& s, const Vec2& u, double speed, MotionIntent& intent) {
+void kick_through(const Situation& s, const wm::RobotState& robot, const Vec2& u, double speed, MotionIntent& intent) {
   intent.target = s.ball + u * 0.2;
   intent.orientation = geom::angle_of(u).radians();
-  intent.max_speed = std::min(intent.max_speed, 1.0);
+  close_on_ball(s, robot, u, intent);
   intent.kick = KickType::kFlat;
   intent.kick_speed = std::min(speed, rules::kMaxBallSpeed - 0.3);
 }
@@ -76,7 +103,7 @@ void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& 
   intent.orientation = geom::angle_of(u).radians();
   if (rel.dot(u) < -0.06 && std::abs(geom::cross(u, rel)) < 0.08) {
     intent.target = s.ball - u * (dd + 0.01);
-    intent.max_speed = std::min(intent.max_speed, 1.0);
+    close_on_ball(s, robot, u, intent);
   } else {
     intent.target = s.ball - u * (dd + 0.2);
     intent.avoid_ball_radius = dd + 0.1;
@@ -87,7 +114,7 @@ void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& 
 MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const Vec2& u, double speed, Skill skill) {
   MotionIntent intent = base(s, skill);
   if (behind_ball_facing(s, robot, u, 0.1)) {
-    kick_through(s, u, speed, intent);
+    kick_through(s, robot, u, speed, intent);
     // Touched from wholly outside their defense area, the ball may be driven through towards it; the robot
     // stops before it would stand wholly inside (a foul), the kick fires at the touch. Otherwise the zone
     // keeps the robot off the ball: touching it partly inside is a foul.
@@ -201,33 +228,50 @@ GoalOpening goal_opening(const Situation& s, const Vec2& from, std::optional<std
   const double high = std::atan2(goal.y() + half - from.y(), goal.x() - from.x());
   std::vector<std::pair<double, double>> hidden = shadows(s, from, shooter);
   std::sort(hidden.begin(), hidden.end());
-  double best_from = 0;
-  double best_width = -1;
+  std::vector<std::pair<double, double>> gaps;  // (from, width), rad
   double start = low;
-  const auto consider = [&](double to) {
-    if (to - start > best_width) {
-      best_width = to - start;
-      best_from = start;
-    }
-  };
   for (const auto& [begin, end] : hidden) {
     if (end <= start) continue;
     if (begin >= high) break;
-    consider(std::min(begin, high));
+    if (std::min(begin, high) > start) gaps.emplace_back(start, std::min(begin, high) - start);
     start = std::max(start, end);
   }
-  if (start < high) consider(high);
-  if (best_width <= 0) return {0, goal};
+  if (start < high) gaps.emplace_back(start, high - start);
+  if (gaps.empty()) return {0, goal};
+  const double reach = std::max(goal.x() - from.x(), 1e-6);
   // Against a post the shot goes kPostAim inside it, as far from the robot bounding the gap as it can: the
   // keeper has the longest way. A gap between two robots (or the whole mouth) is shot through its middle.
-  const double reach = std::max(goal.x() - from.x(), 1e-6);
-  const double post_margin = std::min(std::atan(kPostAim / reach), best_width / 2);
-  const bool at_low_post = best_from <= low + 1e-12;
-  const bool at_high_post = best_from + best_width >= high - 1e-12;
-  double aim = best_from + best_width / 2;
-  if (at_low_post && !at_high_post) aim = best_from + post_margin;
-  if (at_high_post && !at_low_post) aim = best_from + best_width - post_margin;
-  return {best_width, {goal.x(), from.y() + std::tan(aim) * (goal.x() - from.x())}};
+  const auto aim_of = [&](const std::pair<double, double>& gap) {
+    const auto [gap_from, width] = gap;
+    const double post_margin = std::min(std::atan(kPostAim / reach), width / 2);
+    const bool at_low_post = gap_from <= low + 1e-12;
+    const bool at_high_post = gap_from + width >= high - 1e-12;
+    if (at_low_post && !at_high_post) return gap_from + post_margin;
+    if (at_high_post && !at_low_post) return gap_from + width - post_margin;
+    return gap_from + width / 2;
+  };
+  const auto widest = std::max_element(gaps.begin(), gaps.end(),
+                                       [](const auto& a, const auto& b) { return a.second < b.second; });
+  double aim = aim_of(*widest);
+  // Of gaps about as wide (a keeper in the middle of the mouth leaves two), the shooter keeps to the one it
+  // faces: picking by a hair's width, its aim flipped between the posts with the keeper's jitter and the
+  // robot never faced either.
+  const wm::RobotState* robot = nullptr;
+  for (const wm::RobotState& r : s.robots) {
+    if (shooter && r.id == *shooter) robot = &r;
+  }
+  if (robot) {
+    double best_turn = std::abs(geom::Angle::from_radians(aim - robot->orientation).radians());
+    for (const auto& gap : gaps) {
+      if (gap.second < kSimilarGap * widest->second) continue;
+      const double turn = std::abs(geom::Angle::from_radians(aim_of(gap) - robot->orientation).radians());
+      if (turn < best_turn) {
+        best_turn = turn;
+        aim = aim_of(gap);
+      }
+    }
+  }
+  return {widest->second, {goal.x(), from.y() + std::tan(aim) * (goal.x() - from.x())}};
 }
 
 Vec2 shot_target(const Situation& s, std::optional<std::uint32_t> shooter) {
@@ -350,6 +394,11 @@ MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const C
 
 MotionIntent shoot(const Situation& s, const wm::RobotState& robot, const ShootParams& p) {
   const Vec2 u = geom::normalized_or(shot_target(s, robot.id) - s.ball, Vec2(1, 0));
+  if ((s.field.their_goal_center() - s.ball).norm() > p.max_distance) {
+    MotionIntent intent = base(s, Skill::kShoot);
+    approach_ball(s, robot, u, intent);
+    return intent;
+  }
   return kick_along(s, robot, u, p.speed.value_or(s.config->kick_speed), Skill::kShoot);
 }
 

@@ -78,8 +78,11 @@ struct ClearParams {
   double speed = rules::kMaxBallSpeed - 1.0;  // m/s
 };
 /// Shoot at the widest part of their goal left open by the robots, as seen from the ball.
+/// Beyond `max_distance` from their goal centre it only gets behind the ball and moves with it (a penalty's
+/// attacker running with the ball it played on), kicking once the ball is in range.
 struct ShootParams {
   std::optional<double> speed;        // m/s; default: the config's kick speed
+  double max_distance = std::numeric_limits<double>::infinity();  // m, ball to their goal centre
 };
 /// Brake to a standstill.
 struct StopParams {};

@@ -145,6 +145,69 @@ TEST(Skills, ShootAimsInsideThePostOfTheWidestOpenPartOfTheGoal) {
   EXPECT_NEAR(shot_target(empty.situation()).y(), 0.0, 1e-9);
 }
 
+TEST(Skills, OfTwoGapsAboutAsWideTheShooterKeepsToTheOneItFaces) {
+  // Their keeper in the middle of the mouth leaves two gaps about as wide: the shooter (id 1, behind the ball)
+  // aims beside the post on the side it faces, so that its aim does not flip with the keeper's jitter.
+  const Vec2 ball(2.5, 0);
+  for (const double facing : {0.1, -0.1}) {
+    Scene scene(ball);
+    scene.robots = {robot_at({2.39, 0}, facing, 1)};
+    scene.enemies = {enemy_at({4.4, 0.01}, 0)};
+    const Vec2 target = shot_target(scene.situation(), 1);
+    EXPECT_GT(target.y() * facing, 0.3 * std::abs(facing)) << "facing " << facing;
+    EXPECT_GT(std::abs(target.y()), 0.3);
+  }
+  // A gap clearly the wider is taken whichever way the shooter faces.
+  Scene wide(ball);
+  wide.robots = {robot_at({2.39, 0}, 0.1, 1)};
+  wide.enemies = {enemy_at({4.4, 0.2}, 0)};
+  EXPECT_LT(shot_target(wide.situation(), 1).y(), -0.3);
+}
+
+TEST(Skills, ShootBeyondItsMaxDistanceGetsBehindTheBallWithoutKicking) {
+  // Division B: their goal centre at (4.5, 0). The ball 3 m from it, the shooter behind it facing the goal.
+  const Vec2 ball(1.5, 0);
+  Scene scene(ball);
+  const wm::RobotState shooter = robot_at({ball.x() - kDribbler - 0.05, 0.0}, 0.0, 1);
+  scene.robots = {shooter};
+  const MotionIntent beyond = run_skill(scene.situation(), shooter, ShootParams{.max_distance = 2.9});
+  EXPECT_EQ(beyond.kick, KickType::kNone);
+  EXPECT_LT(beyond.target.x(), ball.x());
+  const MotionIntent within = run_skill(scene.situation(), shooter, ShootParams{.max_distance = 3.0});
+  EXPECT_EQ(within.kick, KickType::kFlat);
+}
+
+TEST(Skills, TheLastPartOfAnApproachToABallRollingAwayClosesOnItAtItsSpeedAndMovesWithIt) {
+  // The ball rolls away from the shooter behind it at 1.5 m/s: the kick's approach closes at 1 m/s on top of
+  // that, moving with the ball; at rest it is 1 m/s. Within 0.4 m of their defense area (x = 3.5) it does not
+  // move with the ball (which would steer past the path search's keep-out), nor does our restart's kicker.
+  for (const double speed : {1.5, 0.0}) {
+    const Vec2 ball(0.0, 0.0);
+    Scene scene(ball, {speed, 0.0});
+    const wm::RobotState shooter = robot_at({ball.x() - kDribbler - 0.03, 0.0}, 0.0, 1);
+    scene.robots = {shooter};
+    const MotionIntent intent = run_skill(scene.situation(), shooter, ShootParams{});
+    EXPECT_EQ(intent.kick, KickType::kFlat);
+    EXPECT_NEAR(intent.max_speed, 1.0 + speed, 1e-9);
+    EXPECT_NEAR(intent.target_velocity.x(), speed, 1e-9);
+  }
+  // Our restart's kicker (which may not touch the ball again) lets a ball its push set rolling go: slower.
+  Scene restart({0.0, 0.0}, {1.5, 0.0});
+  const wm::RobotState kicker = robot_at({-kDribbler - 0.03, 0.0}, 0.0, 1);
+  restart.robots = {kicker};
+  restart.s.restart_kicker = 1;
+  const MotionIntent pushed = run_skill(restart.situation(), kicker, ShootParams{});
+  EXPECT_NEAR(pushed.max_speed, 0.75, 1e-9);
+  EXPECT_EQ(pushed.target_velocity, Vec2::Zero());
+  const Vec2 near_area(3.2, 0.0);
+  Scene scene(near_area, {1.5, 0.0});
+  const wm::RobotState shooter = robot_at({near_area.x() - kDribbler - 0.03, 0.0}, 0.0, 1);
+  scene.robots = {shooter};
+  const MotionIntent intent = run_skill(scene.situation(), shooter, ShootParams{});
+  EXPECT_NEAR(intent.max_speed, 2.5, 1e-9);
+  EXPECT_EQ(intent.target_velocity, Vec2::Zero());
+}
+
 TEST(Skills, AShotAtABallOnTheEdgeOfTheirDefenseAreaStopsWhollyOutsideIt) {
   // Division B: their defense area begins at x = 3.5. The ball lies 2 cm before it, the shooter behind it
   // facing their goal; the kick drives through the ball but stops before any part of the robot (with the

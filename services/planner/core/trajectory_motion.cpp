@@ -145,11 +145,12 @@ Vec2 TrajectoryMotionPlanner::guarded(const wm::RobotState& robot, Vec2 velocity
     // Largest v with v * tau + v^2 / (2 a) <= our share: half the gap (the other robot may come towards us
     // doing the same), plus the way a robot moving away at w still goes when it brakes as hard as a robot
     // can (w^2 / (2 b)).
-    // Only a robot running (nearly) straight away is counted on to go on: one crossing our way can turn
-    // towards us instead of braking.
+    // Only an opponent running (nearly) straight away is counted on to go on: one crossing our way can turn
+    // towards us instead of braking, and a teammate ahead is no one to follow closely (one of ours at
+    // 2 m/s marking an opponent ran into a teammate ahead going 1.2 m/s the same way).
     const double other_speed = other.velocity.norm();
     const double along = other.velocity.dot(toward);
-    const double away = along > other_speed * kStraightAway ? along : 0.0;
+    const double away = !other.ours && along > other_speed * kStraightAway ? along : 0.0;
     const double share =
         std::max(0.0, distance - touching) / 2 + away * away / (2 * params_.guard_other_braking);
     const double allowed = stopping_speed(share, a, tau);
@@ -231,8 +232,9 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
       (intent.avoid_placement_corridor && zones.placement_corridor &&
        geom::contains(*zones.placement_corridor, robot.position));
   const Vec2 exit = must_leave ? project_out(robot.position, intent, zones) : robot.position;
+  const bool leaving = (exit - robot.position).norm() > kInsideZone;
   Vec2 target =
-      (exit - robot.position).norm() > kInsideZone
+      leaving
           ? Vec2(exit + geom::normalized_or_zero(Vec2(exit - robot.position)) * kExitOvershoot)
           : project_out(free_target(robot, project_out(intent.target, intent, zones), obstacles), intent, zones);
   // Inside a goal the only way out is its mouth: straight out first, whatever the target (a sideways exit
@@ -257,6 +259,14 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   last_dt_ = dt;
   const TrajectoryPath& path = memory.planned->path;
   Vec2 velocity = path.velocity(dt);
+  const Vec2 way_out = target - robot.position;
+  if (leaving && velocity.dot(way_out) <= 0) {
+    // A searched path that does not lead out (the exit point within another robot's clearance: every path
+    // counts as colliding) would keep the robot in the zone until the rules' grace is over: straight out,
+    // the guards below keeping it off the robots.
+    velocity = geom::normalized_or_zero(way_out) *
+               std::min(limits.max_speed, std::sqrt(2 * limits.max_acceleration * way_out.norm()));
+  }
   if (intent.target_velocity.squaredNorm() > 0 && (target - start).norm() < kFollowDistance) {
     // Near a moving target: move with it, plus a correction towards it proportional to the distance (capped
     // so that the robot can still brake it away). A time-optimal plan to rest in the target's frame brakes

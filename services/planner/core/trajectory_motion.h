@@ -36,8 +36,9 @@ struct TrajectoryMotionParams {
   double follow_gain = 3.0;            // 1/s: near a moving target, m/s of correction per m of distance
   // The contact guard, last before the command goes out: towards any robot, our speed may not exceed what
   // still stops us (after guard_latency at guard_deceleration) within half the gap that is left
-  // guard_margin short of touching it, plus the way it goes on if, running away (within 45 degrees of
-  // straight away: one crossing our way may turn towards us instead), it brakes at guard_other_braking.
+  // guard_margin short of touching it, plus the way it goes on if, an opponent running away (within 45
+  // degrees of straight away: one crossing our way may turn towards us instead; a teammate ahead is not
+  // followed closely), it brakes at guard_other_braking.
   // Two robots that both keep it never touch, whatever each predicts of the other; only a robot driving
   // into another can still touch it.
   double guard_margin = 0.03;          // m beyond two radii

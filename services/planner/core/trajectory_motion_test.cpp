@@ -103,6 +103,44 @@ TEST(TrajectoryMotion, ARobotFollowingATargetIntoOurDefenseAreaStopsAtTheZonesEd
   EXPECT_LT(deepest, edge + 0.1) << "it kept up with the target as far as the zone";
 }
 
+TEST(TrajectoryMotion, TheContactGuardCountsOnAnOpponentRunningAwayButNotOnATeammate) {
+  // Following a target at 2 m/s with a robot 0.3 m ahead running the same way at 1.2 m/s: an opponent (to
+  // mark) may be closed on as fast as its running away still leaves room to brake; a teammate ahead is not
+  // followed closely (the guard counts on no way it goes on).
+  const auto forward_speed = [](bool ahead_is_ours) {
+    TrajectoryMotionPlanner motion(MotionLimits{});
+    const wm::RobotState robot = robot_at({0, 0});
+    Zones zones;
+    zones.robots = {{.id = 1, .ours = true, .position = robot.position, .velocity = {2.0, 0}},
+                    {.id = 2, .ours = ahead_is_ours, .position = {0.3, 0}, .velocity = {1.2, 0}}};
+    MotionIntent intent = go_to({0.6, 0});
+    intent.target_velocity = Vec2(2.0, 0);
+    motion.begin_tick();
+    motion.sent(1, Vec2(2.0, 0), 0);
+    return to_team(motion.plan(robot, intent, zones, 0.01), robot.orientation).x();
+  };
+  const double behind_opponent = forward_speed(false);
+  const double behind_teammate = forward_speed(true);
+  EXPECT_GT(behind_opponent, 1.0);
+  EXPECT_LT(behind_teammate, 0.5);
+}
+
+TEST(TrajectoryMotion, ARobotInsideAZoneWhoseExitARobotStandsByDrivesStraightOut) {
+  // Their defense area's STOP zone (division A: the area's front at x = 4.2, the zone 0.39 m before it). Our
+  // robot 0.09 m inside it, an opponent beside the exit point: the searched paths all count as colliding and
+  // the best of them did not lead out; the robot drives out anyway, along the shortest way.
+  TrajectoryMotionPlanner motion(MotionLimits{});
+  Zones zones;
+  zones.their_defense_margin = 0.39;
+  const double edge = their_defense_zone(zones).min().x();
+  const wm::RobotState robot = robot_at({edge + 0.09, 0.0}, M_PI);
+  zones.robots = {{.id = 1, .ours = true, .position = robot.position},
+                  {.id = 5, .ours = false, .position = {edge - 0.05, 0.23}}};
+  motion.begin_tick();
+  const Vec2 command = to_team(motion.plan(robot, go_to({edge - 1.0, 0.0}), zones, 0.01), robot.orientation);
+  EXPECT_LT(command.x(), -0.1) << "out of the zone towards the field";
+}
+
 TEST(TrajectoryMotion, ARobotInsideAZoneNeverDrivesDeeper) {
   // Pushed 4 cm into our zone while driving into it at 0.8 m/s, towards a target beyond the area: the
   // command has no component deeper into the zone, so the robot leaves it.

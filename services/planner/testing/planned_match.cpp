@@ -16,6 +16,7 @@ PlannerConfig planner_config(TeamColor team, const PlannedMatchOptions& options)
   config.strategy = team == TeamColor::kBlue ? options.blue_strategy : options.yellow_strategy;
   config.free_kick = team == TeamColor::kBlue ? options.blue_free_kick : options.yellow_free_kick;
   config.kickoff = team == TeamColor::kBlue ? options.blue_kickoff : options.yellow_kickoff;
+  config.penalty = team == TeamColor::kBlue ? options.blue_penalty : options.yellow_penalty;
   config.actuation_latency = options.actuation_latency;
   config.default_field = options.field;
   return config;

@@ -52,6 +52,8 @@ struct PlannedMatchOptions {
   FreeKickPlay yellow_free_kick = FreeKickPlay::kShot;
   KickoffPlay blue_kickoff = PlannerConfig().kickoff;  // each team's own kickoffs (the base strategy's)
   KickoffPlay yellow_kickoff = PlannerConfig().kickoff;
+  PenaltyPlay blue_penalty = PlannerConfig().penalty;  // each team's own penalties (the base strategy's)
+  PenaltyPlay yellow_penalty = PlannerConfig().penalty;
 };
 
 /// The `strict_ai` profile's rules (every foul refereed, cards, defense areas, no progress) for matches that
