@@ -8,10 +8,11 @@
 // The strategies swap colours every other seed.
 //
 // Per pairing it prints, per strategy and per match on average: goals for / against, passes tried /
-// completed, shots / on target, possession share, kickoffs, penalties and free kicks taken and kept (the next touch a
-// teammate's, or a goal) and the goals scored from them (no opponent touch between) (sslctl's PlayAccount
-// on the ground truth, the kicker's intent from its planner's skill), and every game event by type, fouls
-// marked, "avoidable" ones (keep-out, too fast in STOP, defense area, double touch, crash) counted apart.
+// completed, shots / on target, possession share, kickoffs, penalties and free kicks taken and kept (the
+// next touch a teammate's, or a goal) and the goals scored from them (no opponent touch between) (sslctl's
+// PlayAccount on the ground truth, the kicker's intent from its planner's skill), and every game event by
+// type, fouls marked, "avoidable" ones (keep-out, too fast in STOP, defense area, double touch, crash)
+// counted apart.
 // Budget (../shared/design.md): base beats ball_chaser by >= 3 goals per match over 20 seeds, >= 70 % of
 // passes completed, 0 avoidable fouls.
 //
@@ -407,8 +408,7 @@ int main(int argc, char** argv) {
           "  plays N seeded whole 6 v 6 matches (default 20; seeds S, S+1, ...) per pairing of strategies (base,\n"
           "  base+redirect: base with the free-kick set play, base+kickoff_shot: kickoffs shot straight,\n"
           "  base+penalty_shot: penalties shot from the mark, or several: base+redirect+kickoff_shot; ball_chaser,\n"
-          "  wander; default base:ball_chaser and base:base) in lockstep\n"
-          "  under the strict_ai rules,\n"
+          "  wander; default base:ball_chaser and base:base) in lockstep under the strict_ai rules,\n"
           "  halves of --half s of playing time (default 300), J matches at a time (default: the cores), and\n"
           "  prints goals, passes, shots, possession and game events per strategy and match, with the budgets;\n"
           "  --tactics: also the share of each role/tactic in normal play\n");

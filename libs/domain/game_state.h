@@ -8,7 +8,8 @@
 // into normal play once the ball stayed more than kBallMovedDistance from where it was when the restart
 // became ready for kBallMovedHold: a kicked ball moves on, while a jump of the estimate for a frame or two
 // (its velocity spiking while robots crowd or pass the ball) is no kick. Playing on such a jump was a
-// keep-out foul at their restarts and handed our own restart's pass to the strategy before the kick. FORCE_START is play at once; STOP, HALT, TIMEOUT, GOAL and BALL_PLACEMENT clear it.
+// keep-out foul at their restarts and handed our own restart's pass to the strategy before the kick.
+// FORCE_START is play at once; STOP, HALT, TIMEOUT, GOAL and BALL_PLACEMENT clear it.
 //
 //   GameState game(TeamColor::kBlue);
 //   game.update(referee, frame, ball_vision);
@@ -63,11 +64,11 @@ class GameState {
   bool is_our_kickoff() const { return is_kickoff() && ours_; }
   bool is_their_kickoff() const { return is_kickoff() && !ours_; }
   bool is_our_penalty() const { return is_penalty() && ours_; }
+  bool is_their_penalty() const { return is_penalty() && !ours_; }
   /// A penalty whose ball is in play and which no new command ended yet (goal, STOP): its attacker may
   /// touch the ball again until the penalty is decided.
   bool is_our_penalty_in_play() const { return penalty_in_play_ && ours_; }
   bool is_their_penalty_in_play() const { return penalty_in_play_ && !ours_; }
-  bool is_their_penalty() const { return is_penalty() && !ours_; }
   bool is_our_free_kick() const { return is_free_kick() && ours_; }
   bool is_their_free_kick() const { return is_free_kick() && !ours_; }
   bool is_our_ball_placement() const { return is_ball_placement() && ours_; }

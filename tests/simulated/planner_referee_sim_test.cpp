@@ -874,18 +874,23 @@ PenaltyOutcome take_penalty(const Case& c, std::uint64_t seed, PenaltyPlay play,
   m.place_ball({hl - field.goal_center_to_penalty_mark, 0});
   const double start_at = kWarmUp + 5.0;
   const RefereeCommand penalty = testing::command_for(Restart::kPenalty, c.side.us);
-  m.script({{kWarmUp, RefereeCommand::kStop, penalty}, {kWarmUp + 2.5, penalty}, {start_at, RefereeCommand::kNormalStart}});
+  m.script({{kWarmUp, RefereeCommand::kStop, penalty},
+            {kWarmUp + 2.5, penalty},
+            {start_at, RefereeCommand::kNormalStart}});
   while (m.time() < start_at) m.tick();
   const std::uint32_t kicker = nearest(m.truth(), true)->id;
   constexpr double kPenaltyShotSeen = 4.0;  // m/s
-  std::optional<Vec2> dribble_start;
+  // Where the ball was when a robot of ours last took it on its dribbler (dribbled: while it keeps contact).
+  Vec2 dribble_start = Vec2::Zero();
+  bool dribbling = false;
   bool shot = false;
   while (m.time() < start_at + rules::kPenaltyTimeout) {
     m.tick();
     const Truth& truth = m.truth();
     const double t = m.time();
-    if (truth.ball.x() > hl) return {.goal = std::abs(truth.ball.y()) < field.goal_width / 2, .decided_after = t - start_at};
-    if (std::abs(truth.ball.y()) > field.field_width / 2 || truth.ball.x() < -hl) return {.decided_after = t - start_at};
+    const double after = t - start_at;
+    if (truth.ball.x() > hl) return {.goal = std::abs(truth.ball.y()) < field.goal_width / 2, .decided_after = after};
+    if (std::abs(truth.ball.y()) > field.field_width / 2 || truth.ball.x() < -hl) return {.decided_after = after};
     speed.require(truth.ball_velocity.norm() <= rules::kMaxBallSpeed, t,
                   [&] { return "the ball at " + Always::fmt(truth.ball_velocity.norm()) + " m/s"; });
     // The shot (faster than a played-on ball ever rolls): what follows is the keeper's save and play on.
@@ -897,12 +902,10 @@ PenaltyOutcome take_penalty(const Case& c, std::uint64_t seed, PenaltyPlay play,
       area.require(clear >= kR, t, [&] { return "touched " + Always::fmt(clear) + " m from their defense area"; });
     }
     const std::optional<TrueRobot> holder = nearest(truth, true);
-    if (holder && holder->dribbler_contact) {
-      if (!dribble_start) dribble_start = truth.ball;
-    } else {
-      dribble_start.reset();
-    }
-    const double dribbled = dribble_start ? (truth.ball - *dribble_start).norm() : 0.0;
+    const bool contact = holder && holder->dribbler_contact;
+    if (contact && !dribbling) dribble_start = truth.ball;
+    dribbling = contact;
+    const double dribbled = dribbling ? (truth.ball - dribble_start).norm() : 0.0;
     dribble.require(dribbled <= rules::kMaxDribblingDistance, t,
                     [&] { return "dribbled " + Always::fmt(dribbled) + " m"; });
   }

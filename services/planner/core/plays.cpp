@@ -370,10 +370,10 @@ void stop_with_next(const Situation& s, PlayMemory& memory, TeamIntents& out, co
   }
 }
 
-/// Kickoff: every robot but the kicker in our half and outside the centre circle (targets).
 /// m beyond our half and the centre circle a robot's centre keeps before a kickoff is in play.
 double kickoff_margin(const Situation& s) { return radius(s) + s.config->keep_away_margin; }
 
+/// Kickoff: every robot but the kicker in our half and outside the centre circle (targets).
 void keep_kickoff_legal(const Situation& s, TeamIntents& out, std::optional<std::uint32_t> kicker) {
   const double margin = kickoff_margin(s);
   const double circle = s.field.size().center_circle_radius + margin;
@@ -390,6 +390,11 @@ void keep_kickoff_legal(const Situation& s, TeamIntents& out, std::optional<std:
 /// m/s of a penalty shot: as hard as the rules allow (less a margin for the kicker's spread), so that the
 /// keeper has the least time.
 constexpr double kPenaltyKickSpeed = rules::kMaxBallSpeed - 0.5;
+/// The base strategy's penalty (penalty_attack).
+constexpr double kPenaltyShotBeyondArea = 0.8;     // m, ball to their goal centre less the area's depth
+constexpr double kPenaltyAdvanceBeyondArea = 0.4;  // m in front of their defense area, on the goal's axis
+constexpr double kPenaltyAdvanceArrival = 0.8;     // m/s the ball still rolls at there
+constexpr double kPenaltyRollingOn = 0.4;          // m/s towards that spot: the kicker runs with it
 
 /// Our restart's kick once it may be taken: a shot, a penalty as hard as the rules allow; the base strategy's
 /// penalty (PenaltyPlay::kAdvance) is penalty_attack. (A pass instead of a poor shot lost more balls than it

@@ -107,15 +107,11 @@ MotionIntent stop_intent(const Situation& s, std::string_view tactic);
 /// Writes robot `id`'s intent, its target moved out of the tick's zones.
 void write_intent(const Situation& s, TeamIntents& out, std::uint32_t id, const MotionIntent& intent);
 /// The base strategy's penalty (PenaltyPlay::kAdvance), from NORMAL_START until a new command ends it (the
-/// rules let its attacker touch the ball again): a ball out of shot range (kPenaltyShotBeyondArea beyond
-/// their defense area) is played on towards kPenaltyAdvanceBeyondArea in front of the area, and the kicker
-/// runs with it, closing on it without a kick, until it is in range; then the shot as hard as the rules allow
-/// at the open part of the goal, from close in, where the keeper has a fraction of the time to react. A ball
-/// that stops out of range is played on again.
-constexpr double kPenaltyShotBeyondArea = 0.8;     // m, ball to their goal centre less the area's depth
-constexpr double kPenaltyAdvanceBeyondArea = 0.4;  // m in front of their defense area, on the goal's axis
-constexpr double kPenaltyAdvanceArrival = 0.8;     // m/s the ball still rolls at there
-constexpr double kPenaltyRollingOn = 0.4;          // m/s towards that spot: the kicker runs with it
+/// rules let its attacker touch the ball again): a ball out of shot range (0.8 m beyond their defense area)
+/// is played on towards a spot 0.4 m in front of the area, and the kicker runs with it, closing on it without
+/// a kick, until it is in range; then the shot as hard as the rules allow at the open part of the goal, from
+/// close in, where the keeper has a fraction of the time to react. A ball that stops out of range is played
+/// on again.
 MotionIntent penalty_attack(const Situation& s, const wm::RobotState& kicker);
 /// The attacker's shot: the shoot skill (it gets behind the ball, then kicks at the open part of the goal).
 void strategy_approach(const Situation& s, std::uint32_t attacker, TeamIntents& out);

@@ -256,11 +256,7 @@ GoalOpening goal_opening(const Situation& s, const Vec2& from, std::optional<std
   // Of gaps about as wide (a keeper in the middle of the mouth leaves two), the shooter keeps to the one it
   // faces: picking by a hair's width, its aim flipped between the posts with the keeper's jitter and the
   // robot never faced either.
-  const wm::RobotState* robot = nullptr;
-  for (const wm::RobotState& r : s.robots) {
-    if (shooter && r.id == *shooter) robot = &r;
-  }
-  if (robot) {
+  if (const wm::RobotState* robot = shooter ? find_robot(s, *shooter) : nullptr) {
     double best_turn = std::abs(geom::Angle::from_radians(aim - robot->orientation).radians());
     for (const auto& gap : gaps) {
       if (gap.second < kSimilarGap * widest->second) continue;

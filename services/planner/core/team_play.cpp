@@ -209,12 +209,12 @@ MotionIntent role_default(const Situation& s, const wm::RobotState& robot, const
   return as_role(open_space(s, robot, {.anchor = slot.anchor, .radius = 0.8}), Role::kMidfieldSupport, "support");
 }
 
-/// `kick` (a pass, shot or clearance along `u`) by a robot that holds the ball: it first turns with the ball
-/// on its dribbler until it faces `u` (going round the ball would hand it to a nearby opponent).
 /// The ball lies within kTurnAreaClearance of their defense area: turning with it would drag it in (a robot
 /// touching a ball inside is a foul).
 bool ball_near_their_area(const Situation& s) { return s.field.in_their_defense_area(s.ball, kTurnAreaClearance); }
 
+/// `kick` (a pass, shot or clearance along `u`) by a robot that holds the ball: it first turns with the ball
+/// on its dribbler until it faces `u` (going round the ball would hand it to a nearby opponent).
 MotionIntent kick_from_dribbler(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent kick) {
   const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
   if (!holds_ball(s, robot) || heading.dot(u) > std::cos(kKickFacing) || ball_near_their_area(s)) return kick;

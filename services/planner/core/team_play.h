@@ -138,11 +138,12 @@ void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 /// waits there, kicker armed, and the kicker passes once the receiver is in place. The pass is the
 /// strategy's pass intent: once the ball is in play the dynamic pass goes on with it.
 void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
-/// Our kickoff in the base strategy, after the kickoff play gave the kicker its straight shot: once the kickoff
-/// may be taken (the kickoff play names the kicker, Situation::restart_kicker), the kicker passes to the teammate rate_passes rates best of those waiting in our half (the
-/// kickoff's wings beside the centre circle), who takes it where it stands; the pass is the strategy's pass
-/// intent, which goes on as a dynamic pass once the ball is in play. With no pass rated, or none kicked within
-/// kickoff_set_up_timeout, the straight shot stands.
+/// Our kickoff in the base strategy, after the kickoff play gave the kicker its straight shot: once the
+/// kickoff may be taken (the kickoff play names the kicker, Situation::restart_kicker), the kicker passes to
+/// the teammate rate_passes rates best of those waiting in our half (the kickoff's wings beside the centre
+/// circle), who takes it where it stands; the pass is the strategy's pass intent, which goes on as a dynamic
+/// pass once the ball is in play. With no pass rated, or none kicked within kickoff_set_up_timeout, the
+/// straight shot stands.
 void kickoff_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 /// The attacker in the coach's style: shoots when the shot is good, starts a pass when one is clearly
 /// better, clears in a clearance, challenges the carrier when they have the ball. Building up or holding
