@@ -37,6 +37,7 @@ struct MotionIntent {
   double max_speed = 3.0;                 // m/s
   double max_angular_speed = std::numeric_limits<double>::infinity();  // rad/s (below the robot's limit)
   double avoid_ball_radius = 0;           // m, robot centre keeps this far from the ball; 0: may touch it
+  bool keep_off_ball = false;             // no business at the ball: clear of it as it rolls (trajectory motion)
   bool guard_ball_circle = false;         // that circle is a hard limit on the command too (the zone guard)
   bool avoid_placement_corridor = false;  // keep out of the ball -> designated position stadium
   bool avoid_their_defense_area = true;   // keep the rule distance (+ margin) from their defense area
@@ -62,6 +63,7 @@ struct ZoneRobot {
 struct Zones {
   wm::Field field = wm::Field();
   std::optional<Vec2> ball;
+  Vec2 ball_velocity = Vec2::Zero();                // m/s; zero while the ball is not seen
   std::optional<geom::Stadium> placement_corridor;  // ball -> designated position, for robot centres
   double their_defense_margin = 0.3;     // m, robot centre distance from their defense area
   double our_defense_margin = 0.1;       // m, robot centre distance from our defense area (non-keepers)

@@ -406,6 +406,7 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   s.keeper = keeper_id && !leaving(*keeper_id) ? keeper_id : std::nullopt;
   s.zones.field = s.field;
   s.zones.ball = ball_known ? std::optional<Vec2>(ball) : std::nullopt;
+  s.zones.ball_velocity = ball_known ? s.ball_velocity : Vec2::Zero();
   s.zones.placement_corridor.reset();
   if (s.zones.ball && s.placement_target) {
     s.zones.placement_corridor = placement_keep_out(*s.zones.ball, *s.placement_target, config.robot_radius,

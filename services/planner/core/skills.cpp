@@ -66,14 +66,29 @@ MotionIntent hold(const Situation& s, const wm::RobotState& robot, MotionIntent 
 constexpr double kTouchClosingSpeed = 1.0;
 /// m/s: a ball rolling away along the approach this fast is followed (moving with it), not waited for.
 constexpr double kFollowAwaySpeed = 0.2;
-/// m from either defense area within which a rolling ball is not followed (close_on_ball).
+/// m from either defense area within which a rolling ball is not followed (follow_ball).
 constexpr double kFollowAreaClearance = 0.4;
+/// m/s a robot closes on a ball lying within kAreaEdgeClearance (m) of a defense area: closing at
+/// kTouchClosingSpeed it stops 2-3 cm beyond its target, partly inside their area while it touches the ball
+/// (a foul, seen in the match series on a ball lying 1 cm in front of their area).
+constexpr double kAreaEdgeClosingSpeed = 0.5;
+constexpr double kAreaEdgeClearance = 0.15;
 
-/// The last part of the approach along `u` to a ball: closing at kTouchClosingSpeed on top of the speed the
-/// ball rolls away along `u` at, moving with a ball that rolls away (a cap of its own would leave the robot
-/// trailing a rolling ball, never touching it). Not near a defense area: moving with the ball is steering
-/// past the path search, which keeps the robot out of them. Not the kicker of our restart, which may not
-/// touch the ball again: a ball it set rolling (a push instead of its kick) it lets go, slower than the ball.
+/// A ball rolling away along `u` (the approach) is moved with: the robot arrives at its target at the
+/// ball's velocity instead of stopping short of a ball that has rolled on. Not near a defense area: moving
+/// with the ball is steering past the path search, which keeps the robot out of them.
+void follow_ball(const Situation& s, const Vec2& u, MotionIntent& intent) {
+  const double away = s.ball_known ? s.ball_velocity.dot(u) : 0.0;
+  const bool near_an_area = s.field.in_their_defense_area(s.ball, kFollowAreaClearance) ||
+                            s.field.in_our_defense_area(s.ball, kFollowAreaClearance);
+  if (away > kFollowAwaySpeed && !near_an_area) intent.target_velocity = s.ball_velocity;
+}
+
+/// The last part of the approach along `u` to a ball: closing at kTouchClosingSpeed (kAreaEdgeClosingSpeed
+/// on a defense area's edge) on top of the speed the ball rolls away along `u` at, moving with a ball that
+/// rolls away (a cap of its own would leave the robot trailing a rolling ball, never touching it). Not the
+/// kicker of our restart, which may not touch the ball again: a ball it set rolling (a push instead of its
+/// kick) it lets go, slower than the ball.
 void close_on_ball(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent& intent) {
   const double away = s.ball_known ? std::max(0.0, s.ball_velocity.dot(u)) : 0.0;
   const bool restart_kicker = s.restart_kicker && *s.restart_kicker == robot.id;
@@ -81,10 +96,11 @@ void close_on_ball(const Situation& s, const wm::RobotState& robot, const Vec2& 
     intent.max_speed = std::min(intent.max_speed, away > kFollowAwaySpeed ? away / 2 : kTouchClosingSpeed);
     return;
   }
-  intent.max_speed = std::min(intent.max_speed, kTouchClosingSpeed + away);
-  const bool near_an_area = s.field.in_their_defense_area(s.ball, kFollowAreaClearance) ||
-                            s.field.in_our_defense_area(s.ball, kFollowAreaClearance);
-  if (away > kFollowAwaySpeed && !near_an_area) intent.target_velocity = s.ball_velocity;
+  const bool on_an_area_edge = s.field.in_their_defense_area(s.ball, kAreaEdgeClearance) ||
+                               s.field.in_our_defense_area(s.ball, kAreaEdgeClearance);
+  const double closing = on_an_area_edge ? kAreaEdgeClosingSpeed : kTouchClosingSpeed;
+  intent.max_speed = std::min(intent.max_speed, closing + away);
+  follow_ball(s, u, intent);
 }
 
 /// Drive through the ball along `u` with the kicker armed at `speed`.
@@ -329,6 +345,7 @@ MotionIntent go_to_ball(const Situation& s, const wm::RobotState& robot, const G
   intent.dribble = true;
   intent.target = s.ball - u * (dd - 0.01);
   if ((robot.position - s.ball).norm() < dd + 0.3) intent.max_speed = std::min(intent.max_speed, p.final_speed);
+  follow_ball(s, u, intent);
   return intent;
 }
 
@@ -406,6 +423,7 @@ MotionIntent stop(const Situation& s, const wm::RobotState& /*robot*/, const Sto
 
 MotionIntent open_space(const Situation& s, const wm::RobotState& /*robot*/, const OpenSpaceParams& p) {
   MotionIntent intent = base(s, Skill::kOpenSpace);
+  intent.keep_off_ball = true;
   // A 7 x 7 grid over the square around the anchor, inside its circle and the field, off the defense areas.
   Vec2 best = p.anchor;
   double best_score = -1e9;

@@ -55,7 +55,8 @@ struct ReceiveParams {
   Vec2 point = Vec2::Zero();          // m, where the pass is expected
   double cushion = 0.3;               // fraction of the ball's speed we move back with it, near the ball
 };
-/// Take the ball from the side we come from, dribbler on.
+/// Take the ball from the side we come from, dribbler on; a ball rolling away is moved with, away from the
+/// defense areas.
 struct GoToBallParams {
   double final_speed = 1.0;           // m/s cap for the last part
 };
@@ -86,7 +87,8 @@ struct ShootParams {
 };
 /// Brake to a standstill.
 struct StopParams {};
-/// Move to the spot near `anchor` with most room from opponents and a free line from the ball.
+/// Move to the spot near `anchor` with most room from opponents and a free line from the ball, keeping off
+/// the ball on the way (a teammate running across a pass deflects it).
 struct OpenSpaceParams {
   Vec2 anchor = Vec2::Zero();
   double radius = 1.0;                // m around the anchor that is searched

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "libs/geometry/angle.h"
@@ -208,6 +209,44 @@ TEST(Skills, TheLastPartOfAnApproachToABallRollingAwayClosesOnItAtItsSpeedAndMov
   EXPECT_EQ(intent.target_velocity, Vec2::Zero());
 }
 
+TEST(Skills, OnTheEdgeOfADefenseAreaTheLastPartOfAnApproachClosesAtHalfTheSpeed) {
+  // Division B: the defense areas' fronts at x = +-3.5. A ball lying within 0.15 m of either is closed on at
+  // 0.5 m/s (faster, the robot stops a few cm beyond its target, partly inside their area while touching the
+  // ball); 0.2 m out, at the usual 1 m/s.
+  for (const double side : {1.0, -1.0}) {
+    for (const auto& [x, closing] : {std::pair{3.4, 0.5}, std::pair{3.3, 1.0}}) {
+      const Vec2 ball(side * x, 0.0);
+      Scene scene(ball);
+      const wm::RobotState shooter = robot_at({ball.x() - kDribbler - 0.03, 0.0}, 0.0, 1);
+      scene.robots = {shooter};
+      const MotionIntent intent = run_skill(scene.situation(), shooter, ShootParams{});
+      EXPECT_EQ(intent.kick, KickType::kFlat) << ball.x();
+      EXPECT_NEAR(intent.max_speed, closing, 1e-9) << ball.x();
+    }
+  }
+}
+
+TEST(Skills, GoToBallMovesWithABallRollingAwayButNotNearADefenseArea) {
+  // The robot 0.5 m behind the ball: a ball rolling away at 1.2 m/s is arrived at with its velocity (planned
+  // to rest at where it lies, the robot trails it and never reaches it); a ball lying still or rolling
+  // towards the robot is not, nor one within 0.4 m of their defense area (x = 3.5).
+  struct Case {
+    Vec2 ball;
+    Vec2 velocity;
+    Vec2 expected;
+  };
+  for (const Case& c : {Case{{0.0, 0.0}, {1.2, 0.0}, {1.2, 0.0}}, Case{{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}},
+                        Case{{0.0, 0.0}, {-1.2, 0.0}, {0.0, 0.0}}, Case{{3.2, 0.0}, {1.2, 0.0}, {0.0, 0.0}}}) {
+    Scene scene(c.ball, c.velocity);
+    const wm::RobotState robot = robot_at(c.ball - Vec2(0.5, 0.0), 0.0, 1);
+    scene.robots = {robot};
+    const MotionIntent intent = go_to_ball(scene.situation(), robot, {});
+    EXPECT_TRUE(intent.dribble);
+    EXPECT_NEAR((intent.target_velocity - c.expected).norm(), 0.0, 1e-9)
+        << "ball at " << c.ball.x() << " rolling " << c.velocity.x();
+  }
+}
+
 TEST(Skills, AShotAtABallOnTheEdgeOfTheirDefenseAreaStopsWhollyOutsideIt) {
   // Division B: their defense area begins at x = 3.5. The ball lies 2 cm before it, the shooter behind it
   // facing their goal; the kick drives through the ball but stops before any part of the robot (with the
@@ -274,6 +313,7 @@ TEST(Skills, OpenSpaceMovesAwayFromACrowdedAnchor) {
   for (const wm::RobotState& enemy : scene.enemies) nearest = std::min(nearest, (enemy.position - intent.target).norm());
   EXPECT_GT(nearest, 0.6);
   EXPECT_LE((intent.target - Vec2(2, 1)).norm(), 1.0 + 1e-9);
+  EXPECT_TRUE(intent.keep_off_ball) << "a robot opening space has no business at the ball";
 }
 
 TEST(Skills, ManMarkStandsGoalSideOfItsOpponent) {

@@ -311,11 +311,13 @@ std::vector<PassOption> rate_passes(const Situation& s, std::uint32_t passer, co
   std::vector<PassOption> options;
   for (const wm::RobotState& mate : s.robots) {
     if (mate.id == passer || (s.keeper && mate.id == *s.keeper)) continue;
-    // The ball goes where the receiver can stand still to take it: a running teammate's stopping point (it
-    // cannot turn round in time to meet a ball played to where it was). A receiver next to their defense area
-    // takes the ball a step back from it: a ball it does not stop at once would roll into the area, where
-    // nobody of ours may play it.
-    Vec2 point = mate.position + mate.velocity * (mate.velocity.norm() / (2 * s.config->limits.max_acceleration));
+    // The ball goes where the receiver can stand still to take it: at the dribbler of a running teammate
+    // stopped (it cannot turn round in time to meet a ball played to where it was; a ball played to its
+    // centre's stopping point makes it run on into the ball). A receiver next to their defense area takes the
+    // ball a step back from it: a ball it does not stop at once would roll into the area, where nobody of ours
+    // may play it.
+    const Vec2 stop = mate.position + mate.velocity * (mate.velocity.norm() / (2 * s.config->limits.max_acceleration));
+    Vec2 point = stop + geom::normalized_or(s.ball - stop, Vec2(1, 0)) * dribbler_distance(s);
     const double front = s.field.half_length() - s.field.size().penalty_area_depth - kPassAreaClearance;
     if (s.field.in_their_defense_area(point, kPassAreaClearance)) point.x() = std::min(point.x(), front);
     if (auto option = rate_pass(s, mate.id, point, params)) options.push_back(*option);
@@ -692,6 +694,19 @@ void hold_ball(const Situation& s, TeamPlayMemory& m, const wm::RobotState& robo
   write_intent(s, out, robot.id, as_role(intent, Role::kAttacker, "hold"));
 }
 
+namespace {
+
+/// Whether a field player of ours other than `attacker` stands within a pass's length of the ball.
+bool teammate_in_passing_range(const Situation& s, std::uint32_t attacker, const TeamPlayParams& params) {
+  return std::any_of(s.robots.begin(), s.robots.end(), [&](const wm::RobotState& mate) {
+    const double length = (mate.position - s.ball).norm();
+    return mate.id != attacker && (!s.keeper || mate.id != *s.keeper) && length >= params.min_pass &&
+           length <= params.max_pass;
+  });
+}
+
+}  // namespace
+
 void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamIntents& out) {
   const wm::RobotState* robot = find_robot(s, attacker);
   if (!robot) return;
@@ -715,9 +730,13 @@ void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamI
     return;
   }
   const bool at_ball = (robot->position - s.ball).norm() < 0.5;
+  // A shot that would give the ball away (below hold_below) is not taken while a teammate is there to pass
+  // to: the attacker keeps the ball. Building up it keeps it at once (turning towards the pass, no going
+  // round the ball); otherwise only when no pass rates better now.
+  const bool keep = at_ball && quality < params.hold_below && s.possession != wm::Possession::kEnemy &&
+                    !ball_near_their_area(s) && teammate_in_passing_range(s, attacker, params);
   const bool building_up = m.style == Style::kBuildUpAttack || m.style == Style::kHoldPossession;
-  if (at_ball && building_up && quality < params.hold_below && s.possession != wm::Possession::kEnemy &&
-      !ball_near_their_area(s)) {
+  if (keep && building_up) {
     hold_ball(s, m, *robot, out);
     return;
   }
@@ -737,6 +756,10 @@ void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamI
       start_pass(s, m, attacker, options.front(), out);
       return;
     }
+  }
+  if (keep) {
+    hold_ball(s, m, *robot, out);
+    return;
   }
   const Vec2 aim = geom::normalized_or(shot_target(s, attacker) - s.ball, Vec2(1, 0));
   write_intent(s, out, attacker,

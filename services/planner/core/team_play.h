@@ -67,7 +67,7 @@ struct TeamPlayParams {
   double set_up_timeout = 2.5;       // s for the passer to kick
   double flight_timeout = 3.5;       // s for the ball to reach the receiver
   double contested_distance = 0.4;   // m, opponent centre to ball: the ball is challenged, not shot
-  double hold_below = 0.45;          // building up, a shot worse than this is not taken: the ball is kept
+  double hold_below = 0.45;          // attacking, a shot worse than this is not taken: the ball is kept
   double hold_pass_turn = 0.3;       // rad: a held ball is passed once the holder faces the pass this well
   // The free kick's set play (RestartPlay).
   double redirect_arrival_speed = 2.5;  // m/s the pass arrives at the redirecting teammate with
@@ -146,10 +146,11 @@ void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out)
 /// straight shot stands.
 void kickoff_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 /// The attacker in the coach's style: shoots when the shot is good, starts a pass when one is clearly
-/// better, clears in a clearance, challenges the carrier when they have the ball. Building up or holding
-/// possession with a shot that would give the ball away (below hold_below), it keeps the ball on its
-/// dribbler instead, turned towards the most nearly open teammate (or its back to the nearest opponent),
-/// and passes to any teammate a pass rates for once it faces the pass.
+/// better, clears in a clearance, challenges the carrier when they have the ball. With a shot that would give
+/// the ball away (below hold_below; not on the edge of their defense area) and a teammate within a pass's
+/// length, it keeps the ball on its dribbler instead (building up at once, otherwise when no pass rates
+/// better now), turned towards the most nearly open teammate (or its back to the nearest opponent), and
+/// passes to any teammate a pass rates for once it faces the pass.
 void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamIntents& out);
 /// The attacker keeping the ball (see attack): takes it on its dribbler, turns, passes.
 void hold_ball(const Situation& s, TeamPlayMemory& m, const wm::RobotState& robot, TeamIntents& out);

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <set>
 #include <vector>
@@ -97,7 +98,26 @@ TEST(TeamPlay, APassIntoAnOpponentsPathIsRejectedAndAnOpenOneIsRated) {
   ASSERT_EQ(options.size(), 1u);
   EXPECT_EQ(options.front().receiver, 3u);
   EXPECT_GT(options.front().margin, 0.15);
-  EXPECT_NEAR(options.front().progress, 2.5, 1e-9);
+  // Up the field to robot 3's dribbler, on its line from the ball.
+  const double dd = dribbler_distance(scene.situation());
+  EXPECT_NEAR(options.front().progress, 2.5 - dd * 2.5 / std::hypot(2.5, 1.0), 1e-9);
+}
+
+TEST(TeamPlay, APassGoesToTheDribblerOfItsReceiverStopped) {
+  // A teammate standing still takes the ball at its dribbler, on the line from the ball; one running takes it
+  // at its dribbler where it can stop (at 3 m/s^2). A pass to its centre makes a receiver run into the ball.
+  Scene scene({0, 0});
+  wm::RobotState running = robot_at({-1.0, 2.0}, 0, 3);
+  running.velocity = Vec2(0.0, 1.5);
+  scene.robots = {robot_at({-0.1, 0}, 0, 1), robot_at({2.0, 0.0}, 0, 2), running};
+  const Situation& s = scene.situation();
+  const double dd = dribbler_distance(s);
+  std::map<std::uint32_t, Vec2> point_of;
+  for (const PassOption& option : rate_passes(s, 1)) point_of[option.receiver] = option.point;
+  ASSERT_EQ(point_of.size(), 2u);
+  EXPECT_NEAR((point_of[2] - Vec2(2.0 - dd, 0.0)).norm(), 0.0, 1e-9);
+  const Vec2 stop(-1.0, 2.0 + 1.5 * 1.5 / (2 * 3.0));
+  EXPECT_NEAR((point_of[3] - (stop - stop.normalized() * dd)).norm(), 0.0, 1e-9);
 }
 
 TEST(TeamPlay, TheReceiverNearTheirGoalIsPreferredAndPassesOutOfRangeAreNotRated) {
@@ -178,6 +198,36 @@ TEST(TeamPlay, AnAttackerWithAPoorShotStartsAPassAndItsReceiverWaitsForIt) {
   EXPECT_FALSE(memory.pass);
 }
 
+TEST(TeamPlay, AnAttackerInTheirThirdKeepsTheBallRatherThanTakeAPoorShot) {
+  // Division B, ours in their third pressing (the high-pressure style): the attacker has the ball at its
+  // dribbler facing their goal, a wall of three of theirs 1.5 m ahead and their keeper hide most of the
+  // mouth; its one teammate in range is marked (an opponent in the lane). It keeps the ball (a shot this poor
+  // gives it away) instead of shooting.
+  Scene scene({2.5, 0.3});
+  scene.s.possession = wm::Possession::kFriendly;
+  scene.robots = {robot_at({2.5 - 0.12, 0.3}, 0, 1), robot_at({1.0, -2.0}, 0, 2)};
+  const std::vector<wm::RobotState> wall = {robot_at({4.0, -0.25}, M_PI, 6), robot_at({4.0, 0.0}, M_PI, 7),
+                                            robot_at({4.0, 0.25}, M_PI, 8), robot_at({4.4, 0.1}, M_PI, 9)};
+  scene.enemies = wall;
+  scene.enemies.push_back(robot_at({1.75, -0.85}, 0, 10));
+  ASSERT_LT(shot_quality(scene.situation(), scene.s.ball, 1u), TeamPlayParams{}.hold_below);
+  ASSERT_TRUE(rate_passes(scene.situation(), 1).empty());
+  TeamPlayMemory memory;
+  const TeamIntents out = attacker_plays(scene, memory);
+  EXPECT_EQ(memory.style, Style::kHighPressureAttack);
+  EXPECT_EQ(out.robots[1].tactic, "hold");
+  EXPECT_EQ(out.robots[1].kick, KickType::kNone);
+  // With no teammate in passing range, holding the ball leads nowhere: the shot.
+  scene.robots = {robot_at({2.5 - 0.12, 0.3}, 0, 1)};
+  TeamPlayMemory alone;
+  EXPECT_EQ(attacker_plays(scene, alone).robots[1].tactic, "attack");
+  // With the mouth open, the shot.
+  scene.robots = {robot_at({2.5 - 0.12, 0.3}, 0, 1), robot_at({1.0, -2.0}, 0, 2)};
+  scene.enemies = {robot_at({4.4, 0.1}, M_PI, 9), robot_at({1.75, -0.85}, 0, 10)};
+  TeamPlayMemory open;
+  EXPECT_EQ(attacker_plays(scene, open).robots[1].tactic, "attack");
+}
+
 TEST(TeamPlay, APassInFlightIsJudgedDeflectedOnlyAfterARobotReachedTheBall) {
   // A pass from robot 1 at (0, 0) to robot 2 at (3, 0), 1 m on its way.
   Scene scene({1.0, 0.0});
@@ -232,12 +282,13 @@ TEST(TeamPlay, AFreeKickBehindAWallIsPassedRoundItToATeammateWhoShootsItOnAtOnce
 }
 
 /// Division B, our kickoff may be taken: the kicker (1) behind the ball on the centre mark, the wings (2 on +y,
-/// 3 on -y) beside the centre circle in our half, a defender (4); their robots out of the circle in their half.
+/// 3 on -y) beside the centre circle in our half, a defender (4) in front of our defense area; their robots
+/// out of the circle in their half.
 Scene kickoff_scene() {
   Scene scene({0.0, 0.0});
   scene.s.restart_kicker = 1u;
   scene.robots = {robot_at({-0.12, 0.0}, 0, 1), robot_at({-0.35, 1.2}, 0, 2), robot_at({-0.35, -1.2}, 0, 3),
-                  robot_at({-2.5, 0.0}, 0, 4)};
+                  robot_at({-3.2, 0.0}, 0, 4)};
   scene.enemies = {robot_at({0.7, 0.0}, M_PI, 7), robot_at({1.5, -1.5}, M_PI, 8)};
   return scene;
 }
@@ -270,8 +321,8 @@ TEST(TeamPlay, AKickoffIsPassedToAnOpenWingWhoWaitsForItInOurHalf) {
 TEST(TeamPlay, AKickoffWithNoOpenWingOrNotKickedInTimeIsTheStraightShot) {
   {
     Scene scene = kickoff_scene();
-    scene.enemies.push_back(robot_at({0.1, 0.65}, M_PI, 9));   // in front of both wings
-    scene.enemies.push_back(robot_at({0.1, -0.65}, M_PI, 10));
+    scene.enemies.push_back(robot_at({0.15, 1.1}, M_PI, 9));   // beside both wings
+    scene.enemies.push_back(robot_at({0.15, -1.1}, M_PI, 10));
     TeamPlayMemory memory;
     TeamIntents out;
     kickoff_set_play(scene.situation(), memory, out);

@@ -12,7 +12,6 @@ namespace {
 
 constexpr double kStraightAway = 0.7;   // cos of the angle off straight away a robot counted on to go on runs at
 
-
 constexpr double kArrived = 0.005;              // m: closer to the target than this, at rest, is there
 constexpr int kFreeTargetPasses = 3;            // moves of the target out of robots standing on it
 // m beyond a robot obstacle's radius for a moved target: the sweep grows obstacles by its chord margin
@@ -22,6 +21,10 @@ constexpr double kInsideZone = 0.005;     // m a robot centre may be inside a zo
 constexpr double kFollowDistance = 1.0;   // m from a moving target within which a robot moves with it
 constexpr double kOnZoneEdge = 1e-6;      // m from a zone's edge that counts as on it (the zone guard)
 constexpr double kExitOvershoot = 0.05;   // m beyond a zone's edge that a robot leaving it heads for
+// A robot keeping off the ball (MotionIntent::keep_off_ball) keeps this far (m) beyond touching it from
+// where the ball rolls over the next kKeepOffBallPrediction s (its velocity says little after that).
+constexpr double kKeepOffBallClearance = 0.08;
+constexpr double kKeepOffBallPrediction = 1.0;
 
 
 /// m/s towards an edge `distance` m away at which a robot still stops before it: the command acts after
@@ -102,6 +105,12 @@ TrajectoryMotionPlanner::Obstacles TrajectoryMotionPlanner::obstacles_for(const 
   if (intent.avoid_placement_corridor && zones.placement_corridor) obstacles.stadiums.push_back(*zones.placement_corridor);
   if (intent.avoid_ball_radius > 0 && zones.ball) {
     obstacles.circles.push_back({.position = *zones.ball, .radius = intent.avoid_ball_radius});
+  }
+  if (intent.keep_off_ball && zones.ball) {
+    obstacles.circles.push_back({.position = *zones.ball,
+                                 .velocity = zones.ball_velocity,
+                                 .radius = params_.robot_radius + zones.field.size().ball_radius + kKeepOffBallClearance,
+                                 .moving_for = kKeepOffBallPrediction});
   }
   obstacles.bounds = allowed_area(intent, zones);
   return out;

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "services/planner/core/planner_test_util.h"
 
 namespace ssl::planner {
@@ -139,6 +142,45 @@ TEST(TrajectoryMotion, ARobotInsideAZoneWhoseExitARobotStandsByDrivesStraightOut
   motion.begin_tick();
   const Vec2 command = to_team(motion.plan(robot, go_to({edge - 1.0, 0.0}), zones, 0.01), robot.orientation);
   EXPECT_LT(command.x(), -0.1) << "out of the zone towards the field";
+}
+
+TEST(TrajectoryMotion, ARobotKeepingOffTheBallLetsARollingBallPassInFrontOfIt) {
+  // Our robot runs from (0, -1) to (0, 1); the ball rolls along y = 0 at 2 m/s, timed to be at the crossing
+  // when the robot's straight path reaches it. Keeping off the ball, no point of the planned path (every
+  // 0.02 s) comes within touching distance of where the ball is then; not keeping off, the path runs into it.
+  constexpr double kStep = 0.02;  // s
+  const wm::RobotState robot = robot_at({0.0, -1.0}, M_PI / 2);
+  const Vec2 ball_velocity(2.0, 0.0);
+  const auto plan = [&](const Vec2& ball, bool keep_off) {
+    TrajectoryMotionPlanner motion(MotionLimits{});
+    Zones zones;
+    zones.robots = {{.id = 1, .ours = true, .position = robot.position}};
+    zones.ball = ball;
+    zones.ball_velocity = ball_velocity;
+    MotionIntent intent = go_to({0.0, 1.0});
+    intent.keep_off_ball = keep_off;
+    motion.begin_tick();
+    (void)motion.plan(robot, intent, zones, 0.01);
+    std::vector<Vec2> path;
+    std::optional<double> error;
+    motion.describe(1, kStep, path, error);
+    return path;
+  };
+  const std::vector<Vec2> straight = plan({-20.0, 0.0}, false);
+  const auto crossing = std::find_if(straight.begin(), straight.end(), [](const Vec2& p) { return p.y() >= 0; });
+  ASSERT_NE(crossing, straight.end());
+  const double crossing_time = kStep * static_cast<double>(crossing - straight.begin());
+  const Vec2 ball = -ball_velocity * crossing_time;
+  const auto nearest_approach = [&](const std::vector<Vec2>& path) {
+    double nearest = 1e9;
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      nearest = std::min(nearest, (path[k] - (ball + ball_velocity * (kStep * static_cast<double>(k)))).norm());
+    }
+    return nearest;
+  };
+  const double touching = 0.09 + Zones{}.field.size().ball_radius;  // the params' robot radius + the ball's
+  EXPECT_LT(nearest_approach(plan(ball, false)), touching);
+  EXPECT_GT(nearest_approach(plan(ball, true)), touching);
 }
 
 TEST(TrajectoryMotion, ARobotInsideAZoneNeverDrivesDeeper) {
