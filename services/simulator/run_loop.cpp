@@ -49,7 +49,8 @@ class Reporter {
                                            {"sync_steps", counters.sync_steps},
                                            {"errors_answered", counters.errors_answered},
                                            {"vision_packets_sent", counters.vision_packets_sent},
-                                           {"geometry_packets_sent", counters.geometry_packets_sent}}});
+                                           {"geometry_packets_sent", counters.geometry_packets_sent},
+                                           {"command_timeouts", sim_.command_timeouts()}}});
     }
     last_ = now;
     last_sim_ = sim_.time();

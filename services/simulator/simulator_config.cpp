@@ -72,6 +72,8 @@ Fields<SimulatorConfig> simulator_fields() {
           .doc("iterations per second of the real-time loop"),
       field("fast_step", &SimulatorConfig::fast_step).unit("s").range(0.0001, 0.1)
           .doc("simulated time per iteration in fast mode"),
+      field("command_timeout", &SimulatorConfig::command_timeout).unit("s").range(0.0, 10.0)
+          .doc("a robot without a new command for this long stops, as real firmware does (0: never)"),
       nested("network", &SimulatorConfig::network, network_fields()),
       nested("cameras", &SimulatorConfig::cameras, camera_fields()),
       nested("blue", &SimulatorConfig::blue, robot_fields()),
@@ -123,6 +125,10 @@ SimulatorOptions simulator_options(const SimulatorConfig& config) {
   options.vision.max_robot_radius = std::max(config.blue.radius, config.yellow.radius);
   options.robots_per_team = static_cast<std::uint32_t>(config.robots_per_team);
   options.seed = config.seed;
+  if (config.command_timeout > 0) {
+    options.command_timeout =
+        std::chrono::duration_cast<time::Duration>(std::chrono::duration<double>(config.command_timeout));
+  }
   return options;
 }
 

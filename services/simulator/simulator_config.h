@@ -44,6 +44,7 @@ struct SimulatorConfig {
   RealismProfile realism = RealismProfile::kRealistic;
   double loop_rate = 0;            // Hz, iterations of the real-time loop
   double fast_step = 0;            // s of simulated time per iteration in fast mode
+  double command_timeout = 0;      // s (simulated) without a command after which a robot stops; 0: never
   NetworkConfig network;
   CameraConfig cameras;
   RobotSpec blue;                  // robot specs per team (wheel angles keep their defaults)

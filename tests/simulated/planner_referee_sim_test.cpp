@@ -1456,6 +1456,26 @@ TEST_P(PlannerSimReferee, ClearSendsTheBallOutOfOurHalfAwayFromTheOpponents) {
       << "ball at " << m.truth().ball.transpose();
 }
 
+TEST_P(PlannerSimReferee, TheKeeperClearsABallLyingOnOurGoalLineBesideAPost) {
+  // The ball at rest on our goal line 7 cm beyond a post, inside our defense area (seen in `./ssl up`: the
+  // keeper went for a kicking spot along the line, behind the post, for minutes). Normal play, our keeper
+  // alone: within 8 s the ball is out of our defense area, and not in our goal.
+  LockstepMatch m(param(), seed());
+  only(m, 0);
+  const double hl = m.half_length();
+  const Vec2 ball(-hl + kBallRadius - 0.012, -(m.field().goal_width / 2 + 0.07));
+  m.place_ball(ball);
+  m.place(true, 0, {-hl + 0.2, 0.2}, 0.0);
+  m.script({{kWarmUp, RefereeCommand::kForceStart}});
+  const auto out_of_area = [&] {
+    const Vec2& at = m.truth().ball;
+    return at.x() > -hl + m.field().penalty_area_depth + kBallRadius ||
+           std::abs(at.y()) > m.field().penalty_area_width / 2 + kBallRadius;
+  };
+  EXPECT_TRUE(run_until(m, kWarmUp + 8.0, out_of_area)) << "ball at " << m.truth().ball.transpose();
+  EXPECT_EQ(goal_of(m), 0);
+}
+
 TEST_P(PlannerSimReferee, StopBrakesARunningRobotToAStandstill) {
   // Running at full speed, stop: standing (< 0.05 m/s) within what braking at the simulator's 4 m/s^2
   // takes, plus 0.2 s.

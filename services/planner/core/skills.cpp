@@ -73,6 +73,8 @@ constexpr double kFollowAreaClearance = 0.4;
 /// (a foul, seen in the match series on a ball lying 1 cm in front of their area).
 constexpr double kAreaEdgeClosingSpeed = 0.5;
 constexpr double kAreaEdgeClearance = 0.15;
+/// m a ball on our goal line beside a post is pulled out by the robot clearing it (clear_ball).
+constexpr double kPullOffGoalLine = 0.4;
 
 /// A ball rolling away along `u` (the approach) is moved with: the robot arrives at its target at the
 /// ball's velocity instead of stopping short of a ball that has rolled on. Not near a defense area: moving
@@ -401,6 +403,18 @@ MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const C
       best_room = room;
       best = u;
     }
+  }
+  if (best_room < 0 && std::abs(s.ball.y()) > s.field.size().goal_width / 2) {
+    // On our goal line beside a post: no kicking spot behind the ball on the field, and along the line the
+    // post stands in the way (a keeper tried for minutes). Taken on the dribbler from the field side and
+    // pulled out, then cleared from there.
+    MotionIntent intent = holds_ball(s, robot)
+                              ? go_to_point(s, robot, {.point = robot.position + Vec2(kPullOffGoalLine, 0),
+                                                       .orientation = robot.orientation,
+                                                       .with_ball = true})
+                              : go_to_ball(s, robot, {.final_speed = kTouchClosingSpeed / 2});
+    intent.skill = skill_name(Skill::kClear);
+    return intent;
   }
   return kick_along(s, robot, best, p.speed, Skill::kClear);
 }

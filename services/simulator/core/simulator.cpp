@@ -172,7 +172,9 @@ std::vector<SimError> Simulator::set_commands(TeamColor team, const std::vector<
     }
     if (!physics_->set_command(key, command)) {
       errors.push_back({"UNKNOWN_ROBOT", describe(key) + " is not on the field; command ignored"});
+      continue;
     }
+    last_command_[key] = {.at = time()};
   }
   return errors;
 }
@@ -185,6 +187,7 @@ StepOutput Simulator::step(time::Duration dt) {
   const auto sub_step =
       std::chrono::duration_cast<time::Duration>(std::chrono::duration<double>(physics_->params().step));
   for (time::Duration remaining = dt; remaining > time::Duration::zero(); remaining -= sub_step) {
+    stop_robots_without_commands();
     physics_->step(std::min(remaining, sub_step));
     if (physics_->time() + time_offset_ < vision_->next_event_time()) continue;
     VisionOutput vision = vision_->update(snapshot());
@@ -193,6 +196,16 @@ StepOutput Simulator::step(time::Duration dt) {
     output.geometry_due |= vision.geometry_due;
   }
   return output;
+}
+
+void Simulator::stop_robots_without_commands() {
+  if (!options_.command_timeout) return;
+  const time::Timestamp now = time();
+  for (auto& [key, last] : last_command_) {
+    if (last.stopped || now - last.at <= *options_.command_timeout) continue;
+    last.stopped = true;
+    if (physics_->set_command(key, RobotCommand{.move = RobotCommand::Move::kLocalVelocity})) ++command_timeouts_;
+  }
 }
 
 std::vector<RobotFeedback> Simulator::feedback(TeamColor team) const {

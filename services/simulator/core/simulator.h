@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,6 +32,9 @@ struct SimulatorOptions {
   RobotSpec yellow_spec;
   std::uint32_t robots_per_team = 11;  // placed in a kickoff formation at start, 0..16
   std::uint64_t seed = 1;
+  // A robot whose last command is older than this (simulated time) is commanded to stop (no motion, no
+  // dribbler, kicker disarmed), as real firmware stops a robot whose radio goes quiet; nullopt: never.
+  std::optional<time::Duration> command_timeout;
 };
 
 /// An error answered to a simulation-protocol client: a machine-readable code and a message.
@@ -99,6 +103,8 @@ class Simulator {
   StepOutput step(time::Duration dt);
 
   std::vector<RobotFeedback> feedback(TeamColor team) const;
+  /// How many times a robot was stopped because its commands stopped (options.command_timeout).
+  std::uint64_t command_timeouts() const { return command_timeouts_; }
   /// The world now; time on the simulated clock (continuous across field rebuilds).
   WorldSnapshot snapshot() const;
   /// The simulated clock alone (snapshot().time without building the snapshot).
@@ -113,6 +119,7 @@ class Simulator {
   std::optional<SimError> apply_ball(const BallTeleport& teleport);
   std::optional<SimError> apply_robot(const RobotTeleport& teleport);
   void rebuild(const FieldGeometry& field);
+  void stop_robots_without_commands();
 
   SimulatorOptions options_;
   // Held by pointer so that a new field geometry can rebuild them.
@@ -120,6 +127,12 @@ class Simulator {
   std::unique_ptr<VisionModel> vision_;
   double simulation_speed_ = 1.0;
   time::Duration time_offset_{0};  // simulated time before the current physics world was built
+  struct LastCommand {
+    time::Timestamp at;    // simulated clock
+    bool stopped = false;  // the timeout already stopped the robot
+  };
+  std::map<RobotKey, LastCommand> last_command_;
+  std::uint64_t command_timeouts_ = 0;
 };
 
 }  // namespace ssl::sim

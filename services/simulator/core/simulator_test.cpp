@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 namespace ssl::sim {
 namespace {
@@ -128,6 +130,36 @@ TEST(SimulatorTest, PerfectVisionShowsWhatThePhysicsDoes) {
   }
   EXPECT_TRUE(ball_seen);
   EXPECT_NEAR(world.ball.position.x(), 1.0, 1e-3);
+}
+
+TEST(SimulatorTest, ARobotWhoseCommandsStopIsStoppedAfterTheCommandTimeout) {
+  // Blue robot 1 driven forward at 1 m/s, its command renewed every 10 ms for 1 s, then no more. With a
+  // 0.2 s timeout it keeps its speed for 0.2 s after the last command and stands 0.7 s later; without a
+  // timeout (the default) it keeps going.
+  const auto speed_after = [](std::optional<time::Duration> timeout, double since_last_command) {
+    SimulatorOptions options = perfect_vision(2);
+    options.command_timeout = timeout;
+    Simulator sim(options);
+    ControlRequest clear_run;  // along y = 2.5 in our half, nobody and no ball in the way
+    clear_run.robots = {RobotTeleport{.key = {TeamColor::kBlue, 1}, .x = -3.0, .y = 2.5, .orientation = 0.0}};
+    EXPECT_TRUE(sim.apply(clear_run).empty());
+    RobotCommand forward{.move = RobotCommand::Move::kLocalVelocity};
+    forward.velocity.x() = 1.0;
+    for (int i = 0; i < 100; ++i) {
+      EXPECT_TRUE(sim.set_commands(TeamColor::kBlue, {{1, forward}}).empty());
+      sim.step(milliseconds(10));
+    }
+    for (int i = 0; i < static_cast<int>(std::lround(since_last_command * 100)); ++i) sim.step(milliseconds(10));
+    const auto robot = find(sim.snapshot(), {TeamColor::kBlue, 1});
+    EXPECT_TRUE(robot);
+    return std::make_pair(robot ? robot->velocity.norm() : -1.0, sim.command_timeouts());
+  };
+  const auto timeout = std::chrono::duration_cast<time::Duration>(milliseconds(200));
+  EXPECT_NEAR(speed_after(timeout, 0.18).first, 1.0, 0.05) << "within the timeout the command holds";
+  const auto [stopped, timeouts] = speed_after(timeout, 0.9);
+  EXPECT_LT(stopped, 0.01);
+  EXPECT_EQ(timeouts, 1u);
+  EXPECT_NEAR(speed_after(std::nullopt, 0.9).first, 1.0, 0.05);
 }
 
 TEST(SimulatorTest, ANewFieldRebuildsTheWorldAndKeepsTheRobots) {
