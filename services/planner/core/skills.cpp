@@ -76,14 +76,19 @@ constexpr double kAreaEdgeClearance = 0.15;
 /// m a ball on our goal line beside a post is pulled out by the robot clearing it (clear_ball).
 constexpr double kPullOffGoalLine = 0.4;
 
+/// Whether the ball lies within `clearance` (m) of either defense area.
+bool ball_near_a_defense_area(const Situation& s, double clearance) {
+  return s.field.in_their_defense_area(s.ball, clearance) || s.field.in_our_defense_area(s.ball, clearance);
+}
+
 /// A ball rolling away along `u` (the approach) is moved with: the robot arrives at its target at the
 /// ball's velocity instead of stopping short of a ball that has rolled on. Not near a defense area: moving
 /// with the ball is steering past the path search, which keeps the robot out of them.
 void follow_ball(const Situation& s, const Vec2& u, MotionIntent& intent) {
   const double away = s.ball_known ? s.ball_velocity.dot(u) : 0.0;
-  const bool near_an_area = s.field.in_their_defense_area(s.ball, kFollowAreaClearance) ||
-                            s.field.in_our_defense_area(s.ball, kFollowAreaClearance);
-  if (away > kFollowAwaySpeed && !near_an_area) intent.target_velocity = s.ball_velocity;
+  if (away > kFollowAwaySpeed && !ball_near_a_defense_area(s, kFollowAreaClearance)) {
+    intent.target_velocity = s.ball_velocity;
+  }
 }
 
 /// The last part of the approach along `u` to a ball: closing at kTouchClosingSpeed (kAreaEdgeClosingSpeed
@@ -98,9 +103,8 @@ void close_on_ball(const Situation& s, const wm::RobotState& robot, const Vec2& 
     intent.max_speed = std::min(intent.max_speed, away > kFollowAwaySpeed ? away / 2 : kTouchClosingSpeed);
     return;
   }
-  const bool on_an_area_edge = s.field.in_their_defense_area(s.ball, kAreaEdgeClearance) ||
-                               s.field.in_our_defense_area(s.ball, kAreaEdgeClearance);
-  const double closing = on_an_area_edge ? kAreaEdgeClosingSpeed : kTouchClosingSpeed;
+  const double closing =
+      ball_near_a_defense_area(s, kAreaEdgeClearance) ? kAreaEdgeClosingSpeed : kTouchClosingSpeed;
   intent.max_speed = std::min(intent.max_speed, closing + away);
   follow_ball(s, u, intent);
 }
