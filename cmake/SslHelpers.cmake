@@ -6,7 +6,8 @@
 #   ssl_cc_binary(NAME n SRCS ... [DEPS ...])        -> build/bin/n
 #   ssl_cc_test(NAME n SRCS ... [DEPS ...] [LABELS ...] [TIMEOUT s])   -> GoogleTest, registered with ctest
 #   ssl_cc_benchmark(NAME n SRCS ... [DEPS ...])      -> Google Benchmark, run by ./ssl bench
-#   ssl_cc_fuzzer(NAME n SRCS ... [DEPS ...])         -> libFuzzer target when SSL_FUZZ is on
+#   ssl_cc_fuzzer(NAME n SRCS ... [DEPS ...])         -> libFuzzer target when SSL_FUZZ is on; `fuzzers`
+#                                                        builds them all (tests/fuzz/run runs them)
 
 add_library(ssl_project_options INTERFACE)
 target_compile_features(ssl_project_options INTERFACE cxx_std_20)
@@ -27,8 +28,11 @@ endif()
 
 if(SSL_FUZZ)
   # Instrument every library for coverage-guided fuzzing; the fuzz targets add the libFuzzer driver.
-  target_compile_options(ssl_project_options INTERFACE -fsanitize=fuzzer-no-link,address,undefined)
+  # Undefined behaviour aborts (UBSan only prints and goes on by default) so the fuzzer reports it.
+  target_compile_options(ssl_project_options INTERFACE -fsanitize=fuzzer-no-link,address,undefined
+    -fno-sanitize-recover=undefined)
   target_link_options(ssl_project_options INTERFACE -fsanitize=address,undefined)
+  add_custom_target(fuzzers)
 endif()
 
 set(CMAKE_CXX_EXTENSIONS OFF)
@@ -109,4 +113,5 @@ function(ssl_cc_fuzzer)
   target_link_options(${ARG_NAME} PRIVATE -fsanitize=fuzzer,address,undefined)
   set_target_properties(${ARG_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/fuzz)
   _ssl_common_setup(${ARG_NAME})
+  add_dependencies(fuzzers ${ARG_NAME})
 endfunction()
