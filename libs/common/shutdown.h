@@ -8,7 +8,7 @@
 //   ssl::ShutdownSignal shutdown;
 //   auto participant = ...;
 //   while (!shutdown.wait_for(std::chrono::milliseconds(100))) { ... }
-//   // participant's destructor deletes every DDS entity: no /dev/shm segment is left behind.
+//   // the participant's destructor deletes every DDS entity: peers hear it leave at once.
 #pragma once
 
 #include <atomic>

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 
 namespace ssl::dds {
 namespace {
@@ -25,13 +27,35 @@ std::string host_name() {
 Result<HealthReporter> HealthReporter::create(Participant& participant, std::string service) {
   auto writer = participant.make_writer(topics::kSystemHealth);
   if (!writer) return writer.error();
-  return HealthReporter(std::move(*writer), std::move(service));
+  return HealthReporter(std::move(*writer), std::move(service), participant.lease_duration());
 }
 
-HealthReporter::HealthReporter(Writer<idl::system::Health> writer, std::string service)
-    : writer_(std::move(writer)), service_(std::move(service)), host_(host_name()), start_unix_ns_(wall_clock_unix_ns()) {}
+HealthReporter::HealthReporter(Writer<idl::system::Health> writer, std::string service,
+                               std::chrono::nanoseconds lease)
+    : writer_(std::move(writer)),
+      service_(std::move(service)),
+      host_(host_name()),
+      start_unix_ns_(wall_clock_unix_ns()),
+      lease_(lease),
+      last_report_(std::chrono::steady_clock::now()) {}
+
+void HealthReporter::exit_when_stalled() {
+  exit_when_stalled_ = true;
+  last_report_ = std::chrono::steady_clock::now();
+}
 
 Status HealthReporter::publish(const HealthReport& report) {
+  const auto reported = std::chrono::steady_clock::now();
+  if (exit_when_stalled_ && reported - last_report_ > lease_) {
+    std::fprintf(stderr,
+                 "%s: stood still %.1f s, longer than the DDS lease (%.1f s): its peers dropped this process, which "
+                 "would not rejoin them; exiting (%d) for a fresh start\n",
+                 service_.c_str(), std::chrono::duration<double>(reported - last_report_).count(),
+                 std::chrono::duration<double>(lease_).count(), kExitStalled);
+    std::fflush(stderr);
+    std::_Exit(kExitStalled);  // as if killed: the restart path every service already survives
+  }
+  last_report_ = reported;
   idl::system::Health sample;
   sample.service(service_);
   sample.host(host_);
@@ -57,6 +81,8 @@ Status HealthReporter::publish(const HealthReport& report) {
   sample.uptime_ns(now - start_unix_ns_);
   sample.stamp_unix_ns(now);
   Status written = writer_.write(sample);
+  ++reports_;
+  reported_ok_ = reported_ok_ || report.level == HealthLevel::kOk;
   // The service manager hears the same: up once the loop reports and hears its inputs (or the grace
   // passed), alive while it keeps reporting.
   const bool matched = !inputs_matched_ || inputs_matched_();
@@ -68,6 +94,10 @@ Status HealthReporter::publish(const HealthReport& report) {
     service_manager::alive(ready_sent_ ? report.status : report.status + " (waiting for its inputs)");
   }
   return written;
+}
+
+std::chrono::nanoseconds HealthReporter::period() const {
+  return reported_ok_ || reports_ >= kStartupReports ? kPeriod : kStartupPeriod;
 }
 
 void HealthReporter::ready_when(std::function<bool()> inputs_matched, std::chrono::nanoseconds grace) {

@@ -12,6 +12,7 @@
 // libs/common/shutdown.h).
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <functional>
@@ -32,10 +33,6 @@ struct ParticipantOptions {
   std::string qos_file;     // Fast DDS XML profiles; empty: find_qos_file()
   std::string name = "ssl"; // participant name shown to discovery tools, e.g. "world_model/blue"
   DiscoveryConfig discovery;  // how it finds the others (the site's deploy/.../dds.yaml)
-  // Shared memory with the participants of this host. Fast DDS creates its segments writable by their
-  // owner only, so a process of another user than the services' (an operator's sslctl beside the units'
-  // ssl-stack user) cannot use it and must not announce it: false then, UDP only.
-  bool shared_memory = true;
 };
 
 /// Finds deploy/qos/profiles.xml: $SSL_QOS_FILE, else as ssl::find_deploy_file does.
@@ -85,6 +82,8 @@ class Participant {
 
   int domain_id() const;
   const std::string& qos_file() const;
+  /// How long peers wait for this participant's announcements before they drop it (the profile's lease).
+  std::chrono::nanoseconds lease_duration() const;
 
  private:
   explicit Participant(std::shared_ptr<detail::ParticipantState> state) : state_(std::move(state)) {}

@@ -107,7 +107,9 @@ int main(int argc, char** argv) {
          .send_period = ssl::time::duration_from_seconds(b.send_period),
          .vision_max_age = ssl::time::duration_from_seconds(b.vision_max_age),
          .teleport_placement_to = b.teleport_placement.empty() ? std::nullopt
-                                                               : std::optional<std::string>(b.teleport_placement)},
+                                                               : std::optional<std::string>(b.teleport_placement),
+         .state_file = ssl::referee::state_file_path(b.state_file, flags.domain),
+         .resume_within = ssl::time::duration_from_seconds(b.resume_within)},
         *participant, logger, wall);
     if (!opened) {
       logger->critical("built-in referee: {}", opened.error().message);

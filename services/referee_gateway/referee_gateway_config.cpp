@@ -2,6 +2,9 @@
 
 #include "libs/config/config.h"
 
+#include <cstdlib>
+#include <string>
+
 namespace ssl::referee {
 namespace {
 
@@ -37,6 +40,10 @@ Fields<BuiltinConfig> builtin_fields() {
           .doc("camera frames older than this are not observed"),
       field("teleport_placement", &BuiltinConfig::teleport_placement)
           .doc("'' (the robots place the ball) or the simulator's control host:port: it places the ball"),
+      field("state_file", &BuiltinConfig::state_file)
+          .doc("'' (none), auto (the run directory) or a file: the match, resumed after a restart"),
+      field("resume_within", &BuiltinConfig::resume_within).unit("s").range(0, 86400)
+          .doc("an older state file is not resumed: the match starts afresh"),
   };
 }
 
@@ -77,6 +84,19 @@ Fields<RefereeGatewayConfig> gateway_fields() {
 }
 
 }  // namespace
+
+std::string state_file_path(const std::string& state_file, int domain) {
+  if (state_file != "auto") return state_file;
+  std::string run_directory;
+  if (const char* systemd = std::getenv("RUNTIME_DIRECTORY"); systemd != nullptr && *systemd != '\0') {
+    run_directory = systemd;
+  } else if (const char* user = std::getenv("XDG_RUNTIME_DIR"); user != nullptr && *user != '\0') {
+    run_directory = std::string(user) + "/ssl-stack";
+  } else {
+    run_directory = "/tmp/ssl-stack";
+  }
+  return run_directory + "/domain-" + std::to_string(domain) + "/referee.state";
+}
 
 Result<RefereeGatewayConfig> load_referee_gateway_config(std::span<const std::string> files, const std::vector<std::string>& overrides) {
   return config::load_files(files, gateway_fields(), overrides);

@@ -36,7 +36,16 @@ struct BuiltinConfig {
   double send_period = 0;         // s between Referee packets without a new command
   double vision_max_age = 0;      // s: older camera frames are not observed
   std::string teleport_placement;  // "" (robots place the ball) or the simulator's control "host:port"
+  // Where the referee keeps the match (its last Referee packet) to resume it after a restart: "" nowhere,
+  // "auto" the run directory (state_file_path), else a file.
+  std::string state_file;
+  double resume_within = 0;  // s: an older state file is a finished session; the match starts afresh
 };
+
+/// The built-in referee's state file for DDS domain `domain`: "" for none; "auto" gives
+/// <run directory>/domain-<domain>/referee.state, the run directory being $RUNTIME_DIRECTORY (systemd's),
+/// else $XDG_RUNTIME_DIR/ssl-stack, else /tmp/ssl-stack (as ./ssl up's); any other value as it is.
+std::string state_file_path(const std::string& state_file, int domain);
 
 struct NetworkConfig {
   std::string interface_address;  // multicast interface the group is joined on

@@ -78,6 +78,8 @@ int main(int argc, char** argv) {
       logger->critical("{}", reporter.error().message);
       return 1;
     }
+    // In lockstep the loop waits for its client's steps as long as the client likes.
+    if (config->mode != ssl::sim::Mode::kLockstep) reporter->exit_when_stalled();
     health.emplace(std::move(*reporter));
   }
 

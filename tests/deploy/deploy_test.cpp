@@ -320,8 +320,8 @@ TEST(ServiceManager, WithoutANotifySocketTheServicesRunAsBefore) {
 
 TEST(ServiceManager, AnOperatorsSslctlReachesServicesRunningAsTheUnitsUser) {
   // The units run the services as their own user; an operator runs sslctl as another. Fast DDS's shared-
-  // memory segments are writable by their owner only, so sslctl talks UDP (ParticipantOptions::
-  // shared_memory). Two ids of no account, via setpriv: neither may write the other's files.
+  // memory segments would be writable by their owner only; every participant talks UDP
+  // (libs/dds/participant.cpp). Two ids of no account, via setpriv: neither may write the other's files.
   if (::geteuid() != 0) GTEST_SKIP() << "running processes as other users needs root";
   if (shell("command -v setpriv").status != 0) GTEST_SKIP() << "setpriv (util-linux) is not installed";
   const auto as_user = [](int uid, const fs::path& program, std::vector<std::string> args) {

@@ -108,8 +108,9 @@ TEST(DdsTwoProcessTest, LateJoinerReceivesTheLastRefereeState) {
   EXPECT_EQ(writer.wait(kTimeout), 0);
 }
 
-TEST(DdsTwoProcessTest, SigtermLeavesNoSharedMemorySegmentsBehind) {
-  // A service (sslctl talks UDP only: see dds::ParticipantOptions::shared_memory).
+TEST(DdsTwoProcessTest, AServiceMapsNoSharedMemorySegments) {
+  // Services talk UDP only (libs/dds/participant.cpp: Fast DDS's shared memory leaves a process restarted
+  // after SIGKILL deaf), so a killed one leaves nothing in /dev/shm either.
   auto started = ChildProcess::start(bin_dir() / "vision_gateway", {"--domain", "153", "--vision-port", "22153"});
   ASSERT_TRUE(started) << started.error().message;
   ChildProcess& service = *started;
@@ -117,11 +118,9 @@ TEST(DdsTwoProcessTest, SigtermLeavesNoSharedMemorySegmentsBehind) {
   while ((line = service.read_line(kTimeout)) && line->find("listening for vision") == std::string::npos) {}
   ASSERT_TRUE(line) << service.drain_stderr();
   const auto segments = mapped_shm_files(service.pid());
-  ASSERT_FALSE(segments.empty()) << "expected the service to use Fast DDS shared memory";
-
+  EXPECT_TRUE(segments.empty()) << "the service maps " << *segments.begin();
   service.signal(SIGTERM);
-  ASSERT_EQ(service.wait(kTimeout), 0) << service.drain_stderr();
-  for (const auto& segment : segments) EXPECT_FALSE(std::filesystem::exists(segment)) << segment << " was left behind";
+  EXPECT_EQ(service.wait(kTimeout), 0) << service.drain_stderr();
 }
 
 TEST(DdsTwoProcessTest, HzReportsTheRateOfAWriterProcess) {

@@ -242,10 +242,7 @@ int topic_pub(const PubOptions& options, ShutdownSignal& shutdown, std::ostream&
 Result<dds::Participant> open_participant(int domain_id, const std::string& site, std::string name) {
   auto setup = service::prepare("", site, "");
   if (!setup) return setup.error();
-  // UDP only: sslctl is the operator's tool and may run as another user than the services (see
-  // ParticipantOptions::shared_memory).
-  return dds::Participant::create(
-      {.domain_id = domain_id, .name = std::move(name), .discovery = setup->discovery, .shared_memory = false});
+  return dds::Participant::create({.domain_id = domain_id, .name = std::move(name), .discovery = setup->discovery});
 }
 
 }  // namespace ssl::sslctl

@@ -421,6 +421,7 @@ Result<std::unique_ptr<ConsoleService>> ConsoleService::create(const ServiceOpti
   // One health instance per console: a match may have several (the coach box's, a laptop's).
   auto reporter = dds::HealthReporter::create(participant, "console/" + std::to_string(options.http_port));
   if (!reporter) return reporter.error();
+  reporter->exit_when_stalled();
   s.reporter.emplace(std::move(*reporter));
 
   if (!options.simulator_control.empty()) {

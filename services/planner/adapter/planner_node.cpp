@@ -40,6 +40,7 @@ Result<PlannerNode> PlannerNode::create(dds::Participant& participant, const Pla
   if (!health) return health.error();
   // Up (READY) once it hears a world model.
   health->ready_when([reader = *world] { return reader.counters().matched_writers > 0; });
+  health->exit_when_stalled();
   auto params = planner_runtime_parameters(config);
   if (!params) return params.error();
   PlannerNode node(config, wall_clock, std::move(*world), std::move(*referee), std::move(*geometry),
@@ -73,7 +74,8 @@ PlannerNode::PlannerNode(const PlannerServiceConfig& config, time::Clock& wall_c
       health_(std::move(health)) {
   tick_times_.reserve(4096);
   const time::Timestamp now = clock_->now();
-  next_health_ = now + 1s;
+  last_health_ = now;
+  next_health_ = now + health_.period();
   next_tick_ = now;
   last_tick_ = time::Timestamp::min();
 }
@@ -187,7 +189,7 @@ bool PlannerNode::poll() {
   now = clock_->now();
   if (now >= next_health_) {
     report_health(now);
-    next_health_ = now + 1s;
+    next_health_ = now + health_.period();
   }
   return ticked;
 }
@@ -204,7 +206,7 @@ void PlannerNode::report_health(time::Timestamp now) {
     report.level = dds::HealthLevel::kOk;
     report.status = "running";
   }
-  report.rate_hz = static_cast<double>(ticks_in_period_);
+  report.rate_hz = static_cast<double>(ticks_in_period_) / std::max(1e-3, time::to_seconds(now - last_health_));
   report.latency_p50 = percentile(tick_times_, 0.5);
   report.latency_p99 = percentile(tick_times_, 0.99);
   report.errors = counters_.write_failures + counters_.non_finite_commands;
@@ -220,6 +222,7 @@ void PlannerNode::report_health(time::Timestamp now) {
   (void)health_.publish(report);
   tick_times_.clear();
   ticks_in_period_ = 0;
+  last_health_ = now;
   rejection_logged_ = false;
 }
 

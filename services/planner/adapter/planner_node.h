@@ -103,6 +103,7 @@ class PlannerNode {
   time::Timestamp last_tick_;
   time::Timestamp next_tick_;               // fixed_rate
   time::Timestamp next_health_;
+  time::Timestamp last_health_;  // the previous report, or the start: its rates are since then
   std::uint64_t sequence_ = 0;
   PlannerNodeCounters counters_;
   std::uint64_t ticks_in_period_ = 0;

@@ -1,5 +1,8 @@
 #include "services/referee_gateway/adapter/builtin_service.h"
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <utility>
@@ -37,6 +40,9 @@ struct BuiltinRefereeService::Impl {
   void send(time::Timestamp now);
   void teleport_placement();
   void report_health();
+  /// Resumes the match of options.state_file when there is a fresh one (see the header).
+  void resume_saved_match();
+  void save(const std::string& packet, time::Timestamp now);
 
   BuiltinServiceOptions options;
   net::MulticastSender sender;
@@ -54,8 +60,10 @@ struct BuiltinRefereeService::Impl {
   std::optional<time::Timestamp> last_sent;   // wall clock
   std::uint32_t last_sent_counter = 0;
   std::optional<time::Timestamp> last_vision;  // wall clock of the newest vision frame received
+  std::optional<time::Timestamp> last_saved;  // wall clock
+  std::uint32_t last_saved_counter = 0;
   std::uint64_t packets_sent = 0, send_errors = 0, operator_commands = 0, rejected_commands = 0,
-                vision_frames = 0, placements_teleported = 0, teleport_errors = 0;
+                vision_frames = 0, placements_teleported = 0, teleport_errors = 0, state_file_errors = 0;
   std::uint64_t packets_at_last_report = 0;
   std::optional<time::Timestamp> last_report;  // monotonic
 };
@@ -101,6 +109,7 @@ void BuiltinRefereeService::Impl::send(time::Timestamp now) {
     ++send_errors;
     return;
   }
+  save(bytes, now);
   const Status sent =
       sender.send({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()});
   if (!sent) {
@@ -110,6 +119,60 @@ void BuiltinRefereeService::Impl::send(time::Timestamp now) {
   ++packets_sent;
   last_sent = now;
   last_sent_counter = referee.state().command_counter;
+}
+
+void BuiltinRefereeService::Impl::resume_saved_match() {
+  if (options.state_file.empty()) return;
+  std::ifstream in(options.state_file, std::ios::binary);
+  if (!in) {
+    logger->info("no state file {}: a new match", options.state_file);
+    return;
+  }
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  ::Referee packet;
+  if (!packet.ParseFromString(bytes) || !packet.has_packet_timestamp()) {
+    ++state_file_errors;
+    logger->warn("state file {} is no Referee packet: a new match", options.state_file);
+    return;
+  }
+  const time::Timestamp now = wall.now();
+  const RefereeState saved = from_proto(packet, now, RefereeSource::kBuiltin);
+  const double age = time::to_seconds(now - saved.packet_referee);
+  if (age > time::to_seconds(options.resume_within) || age < -1) {
+    logger->info("state file {} was written {:.0f} s ago (resume_within {:.0f} s): a new match", options.state_file,
+                 age, time::to_seconds(options.resume_within));
+    return;
+  }
+  referee.resume(saved, now);
+  const RefereeState& state = referee.state();
+  logger->info("resumed the match of {} (written {:.1f} s ago): {}, yellow {} : {} blue, {} with {} pending",
+               options.state_file, age, to_string(state.stage), state.yellow.score, state.blue.score,
+               to_string(state.command), state.next_command ? to_string(*state.next_command) : "nothing");
+}
+
+void BuiltinRefereeService::Impl::save(const std::string& packet, time::Timestamp now) {
+  if (options.state_file.empty()) return;
+  const bool new_command = referee.state().command_counter != last_saved_counter;
+  if (!new_command && last_saved && now - *last_saved < options.save_period) return;
+  // Written aside and renamed, so that a process killed while writing leaves the previous file whole.
+  const std::filesystem::path path(options.state_file);
+  const std::filesystem::path written = path.string() + ".tmp";
+  std::error_code error;
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), error);
+  {
+    std::ofstream out(written, std::ios::binary | std::ios::trunc);
+    out.write(packet.data(), static_cast<std::streamsize>(packet.size()));
+    if (!out.flush()) error = std::make_error_code(std::errc::io_error);
+  }
+  if (!error) std::filesystem::rename(written, path, error);
+  if (error) {
+    if (state_file_errors++ % 100 == 0) {
+      logger->warn("state file {}: {} ({} failed writes)", options.state_file, error.message(), state_file_errors);
+    }
+    return;
+  }
+  last_saved = now;
+  last_saved_counter = referee.state().command_counter;
 }
 
 void BuiltinRefereeService::Impl::teleport_placement() {
@@ -157,7 +220,7 @@ void BuiltinRefereeService::Impl::report_health() {
                  std::string(to_string(state.stage)) + ", yellow " + std::to_string(state.yellow.score) +
                  " : " + std::to_string(state.blue.score) + " blue",
        .rate_hz = rate,
-       .errors = send_errors + teleport_errors,
+       .errors = send_errors + teleport_errors + state_file_errors,
        .dropped = rejected_commands + vision.invalid_detections() + inputs.invalid_ball + inputs.invalid_robot +
                   inputs.unknown_robot_id + inputs.duplicate_robot + inputs.rejected_commands,
        .counters = {{"packets_sent", packets_sent},
@@ -167,6 +230,7 @@ void BuiltinRefereeService::Impl::report_health() {
                     {"vision_frames", vision_frames},
                     {"placements_teleported", placements_teleported},
                     {"teleport_errors", teleport_errors},
+                    {"state_file_errors", state_file_errors},
                     {"invalid_detections", vision.invalid_detections()},
                     {"command_counter", state.command_counter},
                     {"observations", inputs.observations},
@@ -191,6 +255,7 @@ Result<std::unique_ptr<BuiltinRefereeService>> BuiltinRefereeService::open(
   if (!commands) return commands.error();
   auto health = dds::HealthReporter::create(participant, options.health_name);
   if (!health) return health.error();
+  health->exit_when_stalled();
   std::optional<net::UdpSocket> simulator;
   std::optional<net::Endpoint> simulator_control;
   if (options.teleport_placement_to) {
@@ -201,9 +266,11 @@ Result<std::unique_ptr<BuiltinRefereeService>> BuiltinRefereeService::open(
     simulator.emplace(std::move(*socket));
     simulator_control = *endpoint;
   }
-  return std::unique_ptr<BuiltinRefereeService>(new BuiltinRefereeService(std::make_unique<Impl>(
-      options, std::move(*sender), std::move(*vision), std::move(*commands), std::move(*health),
-      std::move(simulator), simulator_control, std::move(logger), wall)));
+  auto impl = std::make_unique<Impl>(options, std::move(*sender), std::move(*vision), std::move(*commands),
+                                     std::move(*health), std::move(simulator), simulator_control, std::move(logger),
+                                     wall);
+  impl->resume_saved_match();
+  return std::unique_ptr<BuiltinRefereeService>(new BuiltinRefereeService(std::move(impl)));
 }
 
 BuiltinRefereeService::BuiltinRefereeService(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

@@ -10,6 +10,12 @@
 // SimulatorCommand teleports the ball onto the placement point (counted as placements_teleported).
 // Our own referee_gateway (and any other team's software) reads those packets like a Game Controller's,
 // so referee.state and referee.event come from the usual gateway path: the packets are the only output.
+// With a state_file the referee keeps the match there (the last Referee packet, written to a temporary
+// file and renamed: on each new command and at least every second) and, when it starts and finds one
+// written less than resume_within ago by the packet's own stamp, resumes it (BuiltinReferee::resume): a
+// restarted referee goes on with the score, stage, clocks and cards instead of a new match in HALT. An
+// unreadable or stale file is logged and a new match starts; failed writes are counted
+// (state_file_errors).
 // Health "referee_gateway/builtin" once per health_period: rate = packets sent per second, WARN while no
 // fresh vision arrives (the referee then sees no ball), counters: packets_sent, send_errors,
 // operator_commands, rejected_commands, vision_frames, invalid_detections and the core's input counters.
@@ -51,6 +57,9 @@ struct BuiltinServiceOptions {
   // placement the referee orders is done by teleporting the ball onto the placement point at once (the
   // robots need not fetch a ball that rolled far out); the referee then sees the placement succeed.
   std::optional<std::string> teleport_placement_to;  // "host:port", e.g. "127.0.0.1:10300"
+  std::string state_file;  // "" none
+  time::Duration resume_within = std::chrono::minutes(10);
+  time::Duration save_period = std::chrono::seconds(1);  // between writes without a new command
 };
 
 class BuiltinRefereeService {

@@ -278,6 +278,7 @@ Result<std::unique_ptr<RefereeGatewayService>> RefereeGatewayService::open(
   if (!event_writer) return event_writer.error();
   auto health = dds::HealthReporter::create(participant, options.health_name);
   if (!health) return health.error();
+  health->exit_when_stalled();
   auto impl = std::make_unique<Impl>(options, std::move(*receiver), std::move(*state_writer),
                                      std::move(*event_writer), std::move(*health), std::move(logger), wall,
                                      monotonic);

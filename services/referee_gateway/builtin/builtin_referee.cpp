@@ -201,6 +201,56 @@ Status BuiltinReferee::command(Command command, Timestamp now, std::optional<Vec
   return Status::success();
 }
 
+void BuiltinReferee::resume(const RefereeState& saved, Timestamp now) {
+  state_.stage = saved.stage;
+  state_.stage_time_left = saved.stage_time_left;
+  state_.match_type = saved.match_type;
+  state_.yellow = saved.yellow;
+  state_.blue = saved.blue;
+  if (saved.blue_team_on_positive_half) state_.blue_team_on_positive_half = saved.blue_team_on_positive_half;
+  state_.command_counter = saved.command_counter;
+  state_.command = saved.command;
+  begin(now);
+  apply(resumption(saved), now);
+  // apply() counts a timeout it starts; this one was counted before the restart.
+  state_.yellow.timeouts = saved.yellow.timeouts;
+  state_.blue.timeouts = saved.blue.timeouts;
+}
+
+BuiltinReferee::Transition BuiltinReferee::resumption(const RefereeState& saved) const {
+  Transition transition{.command = Command::kStop,
+                        .next_is_automatic = profile_.game.auto_continue,
+                        .reason = "resumed after a restart of the referee"};
+  if (saved.stage == Stage::kPostGame) {
+    transition.command = Command::kHalt;
+    transition.next_is_automatic = false;
+    return transition;
+  }
+  switch (saved.command) {
+    case Command::kHalt:
+    case Command::kTimeoutYellow:
+    case Command::kTimeoutBlue:
+      transition.command = saved.command;
+      transition.next_command = saved.next_command;
+      break;
+    case Command::kStop:
+    case Command::kBallPlacementYellow:
+    case Command::kBallPlacementBlue:
+      transition.next_command = saved.next_command.value_or(Command::kForceStart);
+      break;
+    case Command::kPrepareKickoffYellow:
+    case Command::kPrepareKickoffBlue:
+    case Command::kPreparePenaltyYellow:
+    case Command::kPreparePenaltyBlue:
+      transition.next_command = saved.command;
+      break;
+    default:  // the ball in play, or a kick under way
+      transition.next_command = Command::kForceStart;
+      break;
+  }
+  return transition;
+}
+
 void BuiltinReferee::set_blue_on_positive_half(bool blue_on_positive_half) {
   state_.blue_team_on_positive_half = blue_on_positive_half;
 }

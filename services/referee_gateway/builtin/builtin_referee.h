@@ -190,6 +190,17 @@ class BuiltinReferee {
   /// (deprecated), values outside the enum, a placement without a valid target.
   Status command(Command command, time::Timestamp now, std::optional<geom::Vec2> designated_position = {});
 
+  /// Picks a match up from `saved`, the last state this referee sent before its process ended (the
+  /// service's state file), at `now`; before the first step(). Kept: the stage and its time left, both
+  /// teams' info (score, cards and their clocks, fouls, timeouts, placement failures), the sides and the
+  /// command counter. Started afresh: what the rules track between observations (touches, foul timers,
+  /// the shoot-out's turns). The play goes on with one new command (reason "resumed after a restart of
+  /// the referee"): HALT and a timeout stay as they were; a stoppage keeps its pending restart (a
+  /// preparation becomes STOP with it pending, to be prepared again); a ball in play or a restart under way
+  /// becomes STOP with FORCE_START pending; each automatic when the profile continues by itself (the ball
+  /// is checked first, as before every FORCE_START). POST_GAME stays over (HALT).
+  void resume(const RefereeState& saved, time::Timestamp now);
+
   /// Which goal blue defends (the referee swaps it by itself at half time). Not a new command.
   void set_blue_on_positive_half(bool blue_on_positive_half);
 
@@ -241,6 +252,8 @@ class BuiltinReferee {
   void begin(time::Timestamp now);
   Transition standard_transition(Command command, std::optional<geom::Vec2> designated_position,
                                  std::string reason) const;
+  /// The command a resumed match goes on with (see resume()).
+  Transition resumption(const RefereeState& saved) const;
 
   CleanObservation clean(const Observation& observation, time::Timestamp now);
   /// The robot touching the ball now: the nearest with centres within robot + ball radius + `margin`.

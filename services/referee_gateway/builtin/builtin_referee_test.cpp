@@ -191,6 +191,100 @@ TEST(BuiltinReferee, ArcadeRunsTheKickoffByItselfAfterOneStop) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
+// Resuming after a restart (the service's state file)
+
+/// A match in its first half, 2 : 1, a yellow card on blue, with the ball in play since t = 10.
+RefereeState state_in_play() {
+  BuiltinReferee referee(builtin_profile("arcade"), FieldGeometry::division_b(), kBlueOnPositive);
+  EXPECT_TRUE(referee.command(Command::kPrepareKickoffYellow, at(0)));
+  EXPECT_TRUE(referee.command(Command::kNormalStart, at(1)));
+  EXPECT_TRUE(referee.command(Command::kForceStart, at(10)));
+  referee.step(ball_at({1, 1}), at(40));
+  RefereeState state = referee.state();
+  state.yellow.score = 2;
+  state.blue.score = 1;
+  state.blue.yellow_cards = 1;
+  state.blue.yellow_card_times_left = {duration_from_seconds(60)};
+  state.blue.foul_counter = 3;
+  return state;
+}
+
+TEST(BuiltinRefereeResume, AMatchInPlayGoesOnWithItsScoreStageAndClocksAfterAStopAndAForceStart) {
+  const RefereeState saved = state_in_play();
+  ASSERT_EQ(saved.stage, Stage::kNormalFirstHalf);
+  BuiltinReferee resumed(builtin_profile("arcade"), FieldGeometry::division_b(), kBlueOnPositive);
+  resumed.resume(saved, at(42));
+  const RefereeState& state = resumed.state();
+  EXPECT_EQ(state.stage, Stage::kNormalFirstHalf);
+  EXPECT_EQ(state.stage_time_left, saved.stage_time_left);
+  EXPECT_EQ(state.yellow.score, 2u);
+  EXPECT_EQ(state.blue.score, 1u);
+  EXPECT_EQ(state.blue.yellow_card_times_left, saved.blue.yellow_card_times_left);
+  EXPECT_EQ(state.blue.foul_counter, 3u);
+  EXPECT_EQ(state.blue_team_on_positive_half, saved.blue_team_on_positive_half);
+  EXPECT_EQ(state.command, Command::kStop);
+  EXPECT_EQ(state.command_counter, saved.command_counter + 1) << "consumers see one new command";
+  EXPECT_EQ(state.next_command, Command::kForceStart);
+  EXPECT_EQ(state.status_message, "resumed after a restart of the referee");
+
+  resumed.step(ball_at({1, 1}), at(43.9));
+  EXPECT_EQ(resumed.state().command, Command::kStop);
+  resumed.step(ball_at({1, 1}), at(44));
+  EXPECT_EQ(resumed.state().command, Command::kForceStart) << "arcade continues by itself after stop_duration";
+  resumed.step(ball_at({1, 1}), at(54));
+  EXPECT_EQ(resumed.state().stage_time_left, *saved.stage_time_left - duration_from_seconds(10))
+      << "the half's clock runs on from where it stood";
+}
+
+TEST(BuiltinRefereeResume, HaltAndATimeoutStayAsTheyWereWithTheirPendingRestart) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  ASSERT_TRUE(referee.command(Command::kTimeoutBlue, at(0)));
+  BuiltinReferee from_timeout(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  from_timeout.resume(referee.state(), at(5));
+  EXPECT_EQ(from_timeout.state().command, Command::kTimeoutBlue);
+  EXPECT_EQ(from_timeout.state().blue.timeouts, 3u) << "the timeout was counted before the restart";
+  EXPECT_EQ(from_timeout.state().next_command, Command::kPrepareKickoffYellow);
+
+  BuiltinReferee fresh(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  BuiltinReferee from_halt(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  from_halt.resume(fresh.state(), at(5));
+  EXPECT_EQ(from_halt.state().command, Command::kHalt);
+  EXPECT_EQ(from_halt.state().stage, Stage::kNormalFirstHalfPre);
+  EXPECT_EQ(from_halt.state().next_command, Command::kPrepareKickoffYellow);
+  from_halt.step(ball_at({0, 0}), at(60));
+  EXPECT_EQ(from_halt.state().command, Command::kHalt) << "nothing automatic in HALT";
+}
+
+TEST(BuiltinRefereeResume, APreparationIsPreparedAgainAndAStoppageKeepsItsRestart) {
+  BuiltinReferee referee(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  ASSERT_TRUE(referee.command(Command::kPreparePenaltyBlue, at(0)));
+  BuiltinReferee from_preparation(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  from_preparation.resume(referee.state(), at(1));
+  EXPECT_EQ(from_preparation.state().command, Command::kStop);
+  EXPECT_EQ(from_preparation.state().next_command, Command::kPreparePenaltyBlue);
+
+  BuiltinReferee placing(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  ASSERT_TRUE(placing.command(Command::kBallPlacementYellow, at(0), Vec2(0.0, 0.0)));
+  ASSERT_EQ(placing.state().next_command, Command::kPrepareKickoffYellow);
+  BuiltinReferee from_placement(builtin_profile("strict_ai"), FieldGeometry::division_b(), kBlueOnPositive);
+  from_placement.resume(placing.state(), at(3));
+  EXPECT_EQ(from_placement.state().command, Command::kStop);
+  EXPECT_EQ(from_placement.state().next_command, Command::kPrepareKickoffYellow) << "the placement's restart";
+}
+
+TEST(BuiltinRefereeResume, AMatchThatIsOverStaysOver) {
+  RefereeState saved = state_in_play();
+  saved.stage = Stage::kPostGame;
+  BuiltinReferee resumed(builtin_profile("arcade"), FieldGeometry::division_b(), kBlueOnPositive);
+  resumed.resume(saved, at(42));
+  EXPECT_EQ(resumed.state().command, Command::kHalt);
+  EXPECT_EQ(resumed.state().stage, Stage::kPostGame);
+  EXPECT_EQ(resumed.state().yellow.score, 2u);
+  resumed.step(ball_at({0, 0}), at(100));
+  EXPECT_EQ(resumed.state().command, Command::kHalt);
+}
+
+// ---------------------------------------------------------------------------------------------------------
 // Goals
 
 struct GoalCase {

@@ -13,7 +13,6 @@
 #include "libs/dds/participant.h"
 #include "libs/service/parameters.h"
 #include "libs/time/clock.h"
-#include "libs/time/periodic_timer.h"
 #include "services/robot_link/adapter/convert.h"
 #include "services/robot_link/adapter/estop_inputs.h"
 #include "services/robot_link/adapter/link_runner.h"
@@ -22,13 +21,15 @@
 namespace ssl::robot_link {
 namespace {
 
+using namespace std::chrono_literals;
+
 std::int64_t wall_clock_unix_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(
              std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
-/// Builds the 1 Hz system.health report from totals; rates and "in the last second" from differences.
+/// Builds the system.health report from totals; rates and "in the last second" from differences.
 class HealthTracker {
  public:
   HealthTracker(std::string backend, time::Timestamp start_mono)
@@ -182,6 +183,7 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
   if (!health) return health.error();
   // Up (READY) once it hears its team's planner.
   health->ready_when([reader = *commands_reader] { return reader.counters().matched_writers > 0; });
+  health->exit_when_stalled();
   // Run-time parameters (the robots' limits): applied to the core between two ticks.
   auto params = robot_link_runtime_parameters(config);
   if (!params) return params.error();
@@ -208,8 +210,7 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
 
   FeedbackThrottle throttle(time::duration_from_seconds(config.feedback_heartbeat));
   HealthTracker health_tracker((*backend)->description(), clock.now());
-  using namespace std::chrono_literals;
-  time::PeriodicTimer health_timer(clock, 1s);
+  time::Timestamp next_health = clock.now() + health->period();
   std::uint64_t feedback_published = 0;
   std::uint64_t feedback_write_failures = 0;
   std::int32_t alive_estop_writers = 0;
@@ -305,13 +306,14 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
       }
     }
 
-    if (health_timer.poll(tick.now_mono)) {
+    if (tick.now_mono >= next_health) {
       const dds::HealthReport report = health_tracker.report(
           tick, runner.core(), (*backend)->counters(), runner.missed_ticks(), feedback_published,
           feedback_write_failures, estop_device ? &*estop_device : nullptr, throttle.link_quality(),
           commands_reader->counters());
       if (Status published = health->publish(report); !published)
         logger->debug("{}", published.error().message);
+      next_health = tick.now_mono + health->period();
       logger->debug("{}", report.status);
     }
   };

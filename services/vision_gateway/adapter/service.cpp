@@ -276,6 +276,7 @@ Result<std::unique_ptr<VisionGatewayService>> VisionGatewayService::create(
   if (!geometry) return geometry.error();
   auto health = dds::HealthReporter::create(participant, options.health_name);
   if (!health) return health.error();
+  health->exit_when_stalled();
   auto impl = std::make_unique<Impl>(options, std::move(logger), std::move(*vision), std::move(tracker),
                                      std::move(*detection), std::move(*geometry), std::move(*health));
   return std::unique_ptr<VisionGatewayService>(new VisionGatewayService(std::move(impl)));

@@ -35,6 +35,7 @@ Result<WorldModelNode> WorldModelNode::create(dds::Participant& participant, con
   if (!health) return health.error();
   // Up (READY) once it hears a vision gateway.
   health->ready_when([reader = *detections] { return reader.counters().matched_writers > 0; });
+  health->exit_when_stalled();
   auto params = world_model_runtime_parameters(config);
   if (!params) return params.error();
   auto live = service::LiveConfig<WorldModelServiceConfig>::create(participant, instance, std::move(*params),
@@ -64,7 +65,8 @@ WorldModelNode::WorldModelNode(const WorldModelServiceConfig& config, time::Cloc
       writer_(std::move(writer)),
       health_(std::move(health)) {
   processing_times_.reserve(4096);
-  next_health_ = clock_->now() + 1s;
+  last_health_ = clock_->now();
+  next_health_ = last_health_ + health_.period();
   next_publish_ = clock_->now();
 }
 
@@ -120,7 +122,7 @@ std::size_t WorldModelNode::poll() {
   }
   if (now >= next_health_) {
     report_health(now);
-    next_health_ = now + 1s;
+    next_health_ = now + health_.period();
   }
   return frames;
 }
@@ -138,7 +140,7 @@ void WorldModelNode::report_health(time::Timestamp now) {
       !last_frame_wall_ || time::to_seconds(now - *last_frame_wall_) > config_.stale_vision_timeout;
   report.level = stale ? dds::HealthLevel::kWarn : dds::HealthLevel::kOk;
   report.status = stale ? "vision stale" : "running";
-  report.rate_hz = static_cast<double>(published_in_period_);
+  report.rate_hz = static_cast<double>(published_in_period_) / std::max(1e-3, time::to_seconds(now - last_health_));
   report.latency_p50 = percentile(processing_times_, 0.5);
   report.latency_p99 = percentile(processing_times_, 0.99);
   report.errors = write_failures_;
@@ -158,6 +160,7 @@ void WorldModelNode::report_health(time::Timestamp now) {
   (void)health_.publish(report);
   processing_times_.clear();
   published_in_period_ = 0;
+  last_health_ = now;
 }
 
 void WorldModelNode::run(ShutdownSignal& shutdown) {

@@ -75,6 +75,7 @@ class WorldModelNode {
   std::vector<double> processing_times_;  // s, this health period
   std::optional<time::Timestamp> last_frame_wall_;
   time::Timestamp next_health_;
+  time::Timestamp last_health_;  // the previous report, or the start: its rates are since then
   time::Timestamp next_publish_;
 };
 
