@@ -57,7 +57,8 @@ class MulticastSender {
   MulticastSender& operator=(const MulticastSender&) = delete;
   ~MulticastSender();
 
-  /// Sends one datagram to the group. Error: "send to 224.5.23.2:10006 failed: <errno text>".
+  /// Sends one datagram to the group without blocking. Error: "send to 224.5.23.2:10006 failed: <errno
+  /// text>" (also when the socket's send buffer is full: the datagram is dropped).
   Status send(std::span<const std::uint8_t> bytes);
 
   Endpoint group() const noexcept { return group_; }

@@ -97,7 +97,10 @@ Result<Endpoint> SocketCore::local_endpoint() const {
 Status SocketCore::send_to(const Endpoint& destination, std::span<const std::uint8_t> bytes) {
   const sockaddr_in address = to_sockaddr(destination);
   for (;;) {
-    const ssize_t sent = ::sendto(fd_, bytes.data(), bytes.size(), 0,
+    // Never blocks: a datagram that finds the socket's send buffer full is not sent (EAGAIN, counted by
+    // the caller as a send error). A blocked sendto stalled the built-in referee's loop for 4-5 s under a
+    // garbage flood on its ports (tests/faults); a real-time sender drops rather than waits.
+    const ssize_t sent = ::sendto(fd_, bytes.data(), bytes.size(), MSG_DONTWAIT,
                                   reinterpret_cast<const sockaddr*>(&address), sizeof address);
     if (sent >= 0) {
       sent_.fetch_add(1, kRelaxed);

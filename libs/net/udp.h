@@ -94,7 +94,8 @@ class UdpSocket {
   /// The address and port actually bound (the chosen port when opened with port 0).
   Endpoint local_endpoint() const noexcept { return local_; }
 
-  /// Sends one datagram. Error: "send to 127.0.0.1:10300 failed: <errno text>".
+  /// Sends one datagram without blocking. Error: "send to 127.0.0.1:10300 failed: <errno text>" (also when
+  /// the socket's send buffer is full: the datagram is dropped).
   Status send_to(const Endpoint& destination, std::span<const std::uint8_t> bytes);
 
   /// Waits at most `timeout` (<= 0: just check) for one datagram and copies it into `buffer`.

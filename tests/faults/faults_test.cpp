@@ -10,8 +10,17 @@
 //    simulator's command timeout, braking included), and they move again once it runs on (SIGCONT): the
 //    hang outlasted the DDS lease, so the process exits at its next health report and is started again
 //    (dds::HealthReporter::exit_when_stalled).
+//  * Garbage (random datagrams, 1-1400 bytes, seeded) for 10 s: 10 kHz on each league port of the match
+//    (vision, referee, the simulator's control, blue, yellow and grSim ports) and 10 kHz spread over every
+//    other UDP port its processes bound (DDS, robot_link's simulator socket). Every service lives on (same
+//    process), is HEALTH_OK within 5 s after, the gateways and the simulator count what they dropped, and
+//    both teams still move.
+#include <arpa/inet.h>
+#include <netinet/in.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -26,6 +35,10 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <random>
+#include <set>
+#include <sstream>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -114,6 +127,8 @@ class HealthWatch {
   struct Report {
     pid_t pid = 0;
     std::string level;
+    std::uint64_t dropped = 0;
+    std::int64_t stamp_unix_ns = 0;
   };
 
   /// Reads reports until `done(reports)` holds or `timeout` passes; whether it held.
@@ -127,13 +142,20 @@ class HealthWatch {
       if (!line) continue;
       const nlohmann::json report = nlohmann::json::parse(*line, nullptr, false);
       if (report.is_discarded() || !report.contains("service")) continue;
-      reports_[report["service"].get<std::string>()] = {report.value("pid", 0), report.value("level", "")};
+      reports_[report["service"].get<std::string>()] = {report.value("pid", 0), report.value("level", ""),
+                                                        report.value("dropped", std::uint64_t{0}),
+                                                        report.value("stamp_unix_ns", std::int64_t{0})};
     }
     return true;
   }
   bool ok(const std::string& service, pid_t pid) const {
     const auto found = reports_.find(service);
     return found != reports_.end() && found->second.pid == pid && found->second.level == "HEALTH_OK";
+  }
+  std::optional<Report> last(const std::string& service) const {
+    const auto found = reports_.find(service);
+    if (found == reports_.end()) return std::nullopt;
+    return found->second;
   }
 
  private:
@@ -211,6 +233,64 @@ double largest_robot_displacement(const std::string& team, std::chrono::system_c
   return largest;
 }
 
+/// The UDP ports process `pid` has bound (its sockets' inodes looked up in /proc/net/udp).
+std::set<int> udp_ports_of(pid_t pid) {
+  std::set<std::string> inodes;
+  std::error_code error;
+  for (const auto& fd : fs::directory_iterator("/proc/" + std::to_string(pid) + "/fd", error)) {
+    const std::string target = fs::read_symlink(fd.path(), error).string();
+    if (target.rfind("socket:[", 0) == 0) inodes.insert(target.substr(8, target.size() - 9));
+  }
+  std::set<int> ports;
+  std::ifstream table("/proc/net/udp");
+  std::string line;
+  std::getline(table, line);  // header
+  while (std::getline(table, line)) {
+    std::istringstream fields(line);
+    std::string slot, local, remote, state, queues, timer, retransmits, uid, timeout, inode;
+    fields >> slot >> local >> remote >> state >> queues >> timer >> retransmits >> uid >> timeout >> inode;
+    if (!inodes.contains(inode)) continue;
+    const int port = std::stoi(local.substr(local.find(':') + 1), nullptr, 16);
+    if (port != 0) ports.insert(port);
+  }
+  return ports;
+}
+
+/// Sends random datagrams (1-1400 bytes, from `seed`) to 127.0.0.1: each of `full_rate_ports` at
+/// `rate_hz`, and `rate_hz` spread over `shared_ports`, for `duration`. Returns the datagrams sent.
+std::uint64_t flood(const std::set<int>& full_rate_ports, const std::set<int>& shared_ports, double rate_hz,
+                    std::chrono::milliseconds duration, std::uint32_t seed) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd < 0) return 0;
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> size_of(1, 1400);
+  std::uniform_int_distribution<int> byte(0, 255);
+  std::vector<std::uint8_t> datagram(1400);
+  const auto send_to = [&](int port) {
+    for (auto& b : datagram) b = static_cast<std::uint8_t>(byte(random));
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_port = htons(static_cast<std::uint16_t>(port));
+    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    // Loss (a full receive buffer, ECONNREFUSED from an earlier datagram) is part of a flood.
+    (void)::sendto(fd, datagram.data(), static_cast<std::size_t>(size_of(random)), MSG_DONTWAIT,
+                   reinterpret_cast<const sockaddr*>(&to), sizeof to);
+  };
+  const std::vector<int> shared(shared_ports.begin(), shared_ports.end());
+  std::uint64_t sent = 0, shared_next = 0;
+  const auto start = Clock::now();
+  for (auto tick = start; tick < start + duration; tick += 1ms) {
+    std::this_thread::sleep_until(tick);  // pacing: rate_hz / 1000 datagrams per port each millisecond
+    const auto batch = static_cast<int>(rate_hz / 1000);
+    for (int i = 0; i < batch; ++i) {
+      for (const int port : full_rate_ports) send_to(port), ++sent;
+      if (!shared.empty()) send_to(shared[shared_next++ % shared.size()]), ++sent;
+    }
+  }
+  ::close(fd);
+  return sent;
+}
+
 /// Waits until every service of the match reported HEALTH_OK and both teams move.
 void expect_match_running(Match& match, HealthWatch& health) {
   const std::vector<Service> all = services();
@@ -285,6 +365,68 @@ TEST(Faults, ATeamWhosePlannerOrLinkHangsStandsStillAndMovesAgainOnceItRunsOn) {
     EXPECT_LT(displacement, kStandingDisplacement) << team << "'s robots move while " << name << " hangs";
     EXPECT_TRUE(team_moves(team, kMovesWithin)) << team << " stands after " << name << " runs on";
   }
+}
+
+TEST(Faults, AGarbageFloodOnEveryUdpPortLeavesEveryServiceHealthyAndCounting) {
+  Match match;
+  ASSERT_TRUE(match.started());
+  HealthWatch health;
+  ASSERT_NO_FATAL_FAILURE(expect_match_running(match, health));
+  const std::vector<Service> all = services();
+  std::map<std::string, pid_t> pids;
+  std::set<int> bound;
+  for (const Service& service : all) {
+    const std::optional<pid_t> pid = match.pid_of(service.name);
+    ASSERT_TRUE(pid) << service.name;
+    pids[service.name] = *pid;
+    for (const int port : udp_ports_of(*pid)) bound.insert(port);
+  }
+  // The league's ports of this match: vision, referee, and the simulator's four above the vision port.
+  const std::set<int> league{kVisionPort,     kRefereePort,    kVisionPort + 1,
+                             kVisionPort + 2, kVisionPort + 3, kVisionPort + 4};
+  std::set<int> others;
+  for (const int port : bound) {
+    if (!league.contains(port)) others.insert(port);
+  }
+  for (const int port : league) EXPECT_TRUE(bound.contains(port)) << "nothing listens on league port " << port;
+  std::map<std::string, std::uint64_t> dropped_before;
+  for (const char* counting : {"vision_gateway", "referee_gateway", "simulator"}) {
+    dropped_before[counting] = health.last(counting)->dropped;
+  }
+
+  const std::uint64_t sent = flood(league, others, 10'000, 10s, 17);
+  const std::int64_t flood_end_ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+  std::printf("[figures] garbage: %llu datagrams in 10 s to %zu league ports (10 kHz each) and %zu other UDP ports "
+              "(10 kHz together)\n",
+              static_cast<unsigned long long>(sent), league.size(), others.size());
+
+  const bool healthy = health.until(
+      [&](const auto&) {
+        for (const Service& service : all) {
+          const auto report = health.last(service.health);
+          if (!report || report->stamp_unix_ns < flood_end_ns || !health.ok(service.health, pids[service.name])) {
+            return false;
+          }
+        }
+        return true;
+      },
+      5s);
+  for (const Service& service : all) {
+    EXPECT_EQ(match.pid_of(service.name), pids[service.name])
+        << service.name << " did not live through the flood\n" << match.log_of(service.name);
+    const auto report = health.last(service.health);
+    EXPECT_TRUE(report && report->level == "HEALTH_OK") << service.name << ": " << (report ? report->level : "no report");
+  }
+  EXPECT_TRUE(healthy) << "not every service reported HEALTH_OK within 5 s after the flood";
+  for (const auto& [service, before] : dropped_before) {
+    const std::uint64_t after = health.last(service)->dropped;
+    std::printf("[figures] %-16s dropped %llu datagrams of the flood\n", service.c_str(),
+                static_cast<unsigned long long>(after - before));
+    EXPECT_GT(after, before + 1000) << service << " did not count the garbage it dropped";
+  }
+  EXPECT_TRUE(team_moves("blue", kMovesWithin)) << "blue stands after the flood";
+  EXPECT_TRUE(team_moves("yellow", kMovesWithin)) << "yellow stands after the flood";
 }
 
 }  // namespace
