@@ -1,5 +1,6 @@
 #include "services/referee_gateway/adapter/builtin_service.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -70,10 +71,13 @@ struct BuiltinRefereeService::Impl {
 
 void BuiltinRefereeService::Impl::run() {
   time::PeriodicTimer steps(pace, options.step_period);
-  time::PeriodicTimer health_timer(pace, options.health_period);
+  time::Timestamp next_health = pace.now() + std::min(options.health_period, health.period());
   while (steps.wait_next()) {
     step();
-    if (health_timer.poll(pace.now())) report_health();
+    if (pace.now() >= next_health) {
+      report_health();
+      next_health = pace.now() + std::min(options.health_period, health.period());  // 0.1 s while starting
+    }
   }
 }
 

@@ -1,5 +1,6 @@
 #include "services/referee_gateway/adapter/service.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <optional>
@@ -8,7 +9,6 @@
 
 #include "libs/dds/health.h"
 #include "libs/net/multicast.h"
-#include "libs/time/periodic_timer.h"
 #include "services/referee_gateway/adapter/convert.h"
 #include "services/referee_gateway/adapter/ingest.h"
 
@@ -232,8 +232,8 @@ void RefereeGatewayService::Impl::report_health(time::Timestamp now) {
 
 void RefereeGatewayService::Impl::run() {
   std::vector<std::uint8_t> buffer(65536);
-  time::PeriodicTimer health_timer(monotonic, options.health_period);
   last_report = monotonic.now();
+  time::Timestamp next_health = last_report + std::min(options.health_period, health.period());
   for (;;) {
     const net::ReceiveResult received = receiver.receive(buffer, 100ms);
     switch (received.status) {
@@ -263,7 +263,10 @@ void RefereeGatewayService::Impl::run() {
       }
     }
     const time::Timestamp now = monotonic.now();
-    if (health_timer.poll(now)) report_health(now);
+    if (now >= next_health) {
+      report_health(now);
+      next_health = now + std::min(options.health_period, health.period());  // 0.1 s while starting
+    }
   }
 }
 

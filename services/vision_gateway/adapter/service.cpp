@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <mutex>
@@ -138,7 +139,7 @@ void VisionGatewayService::Impl::handle(std::span<const std::uint8_t> bytes, con
 void VisionGatewayService::Impl::maybe_report(time::Timestamp now) {
   if (!period_start) period_start = now;
   const time::Duration elapsed = now - *period_start;
-  if (elapsed < options.health_period) return;
+  if (elapsed < std::min(options.health_period, health.period())) return;  // 0.1 s while starting
   period_start = now;
 
   const double rate = static_cast<double>(frames_in_period) / time::to_seconds(elapsed);
