@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -96,8 +97,8 @@ Status HealthReporter::publish(const HealthReport& report) {
   return written;
 }
 
-std::chrono::nanoseconds HealthReporter::period() const {
-  return reported_ok_ || reports_ >= kStartupReports ? kPeriod : kStartupPeriod;
+std::chrono::nanoseconds HealthReporter::period(std::chrono::nanoseconds steady) const {
+  return reported_ok_ || reports_ >= kStartupReports ? steady : std::min(steady, kStartupPeriod);
 }
 
 void HealthReporter::ready_when(std::function<bool()> inputs_matched, std::chrono::nanoseconds grace) {

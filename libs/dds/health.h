@@ -1,7 +1,8 @@
 // HealthReporter: publishes one service instance's system.health sample (rate, latency, errors, dropped
 // inputs and named counters). Services call publish() from their own loop every period(): once a second,
 // and every 0.1 s while they start (until their first HEALTH_OK report), so that a restarted service is
-// seen healthy as soon as it hears its inputs rather than up to a second later. Each report also tells the service manager (libs/common/service_manager.h): READY=1 with the first report once
+// seen healthy as soon as it hears its inputs rather than up to a second later. Each report also tells the
+// service manager (libs/common/service_manager.h): READY=1 with the first report once
 // the service's inputs are matched (ready_when; without it, the first report), WATCHDOG=1 with every one.
 //
 //   ssl::dds::HealthReporter health(participant, "simulator");
@@ -42,10 +43,11 @@ class HealthReporter {
   /// Publishes one sample stamped with the wall clock and the reporter's uptime.
   Status publish(const HealthReport& report);
 
-  /// How long after this report the next one is due: kStartupPeriod until a report said HEALTH_OK (for at
-  /// most kStartupReports reports: a service that never gets its inputs falls back to kPeriod), then
-  /// kPeriod. Rates in a report are over the time since the previous one, not per period.
-  std::chrono::nanoseconds period() const;
+  /// How long after this report the next one is due: at most kStartupPeriod until a report said HEALTH_OK
+  /// (for at most kStartupReports reports: a service that never gets its inputs falls back), then `steady`
+  /// (the service's own period, kPeriod unless configured). Rates in a report are over the time since the
+  /// previous one, not per period.
+  std::chrono::nanoseconds period(std::chrono::nanoseconds steady = kPeriod) const;
 
   static constexpr std::chrono::nanoseconds kPeriod = std::chrono::seconds(1);
   static constexpr std::chrono::nanoseconds kStartupPeriod = std::chrono::milliseconds(100);

@@ -27,10 +27,7 @@ class Reporter {
 
   void maybe_report() {
     const auto now = SteadyClock::now();
-    const std::chrono::nanoseconds period =
-        health_ != nullptr ? std::min<std::chrono::nanoseconds>(std::chrono::seconds(1), health_->period())
-                           : std::chrono::seconds(1);  // 0.1 s while starting
-    if (now - last_ < period) return;
+    if (now - last_ < (health_ != nullptr ? health_->period() : dds::HealthReporter::kPeriod)) return;
     const double wall = duration<double>(now - last_).count();
     const double simulated = (sim_.time() - last_sim_).count() * 1e-9;
     const ServerCounters counters = server_.counters();

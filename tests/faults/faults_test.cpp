@@ -37,11 +37,11 @@
 #include <optional>
 #include <random>
 #include <set>
-#include <sstream>
 #include <thread>
 #include <string>
 #include <vector>
 
+#include "tests/support/netns.h"
 #include "tests/support/process.h"
 
 namespace ssl {
@@ -233,29 +233,6 @@ double largest_robot_displacement(const std::string& team, std::chrono::system_c
   return largest;
 }
 
-/// The UDP ports process `pid` has bound (its sockets' inodes looked up in /proc/net/udp).
-std::set<int> udp_ports_of(pid_t pid) {
-  std::set<std::string> inodes;
-  std::error_code error;
-  for (const auto& fd : fs::directory_iterator("/proc/" + std::to_string(pid) + "/fd", error)) {
-    const std::string target = fs::read_symlink(fd.path(), error).string();
-    if (target.rfind("socket:[", 0) == 0) inodes.insert(target.substr(8, target.size() - 9));
-  }
-  std::set<int> ports;
-  std::ifstream table("/proc/net/udp");
-  std::string line;
-  std::getline(table, line);  // header
-  while (std::getline(table, line)) {
-    std::istringstream fields(line);
-    std::string slot, local, remote, state, queues, timer, retransmits, uid, timeout, inode;
-    fields >> slot >> local >> remote >> state >> queues >> timer >> retransmits >> uid >> timeout >> inode;
-    if (!inodes.contains(inode)) continue;
-    const int port = std::stoi(local.substr(local.find(':') + 1), nullptr, 16);
-    if (port != 0) ports.insert(port);
-  }
-  return ports;
-}
-
 /// Sends random datagrams (1-1400 bytes, from `seed`) to 127.0.0.1: each of `full_rate_ports` at
 /// `rate_hz`, and `rate_hz` spread over `shared_ports`, for `duration`. Returns the datagrams sent.
 std::uint64_t flood(const std::set<int>& full_rate_ports, const std::set<int>& shared_ports, double rate_hz,
@@ -379,7 +356,7 @@ TEST(Faults, AGarbageFloodOnEveryUdpPortLeavesEveryServiceHealthyAndCounting) {
     const std::optional<pid_t> pid = match.pid_of(service.name);
     ASSERT_TRUE(pid) << service.name;
     pids[service.name] = *pid;
-    for (const int port : udp_ports_of(*pid)) bound.insert(port);
+    for (const int port : testing::bound_udp_ports(*pid)) bound.insert(port);
   }
   // The league's ports of this match: vision, referee, and the simulator's four above the vision port.
   const std::set<int> league{kVisionPort,     kRefereePort,    kVisionPort + 1,

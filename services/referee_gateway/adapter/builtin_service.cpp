@@ -1,6 +1,5 @@
 #include "services/referee_gateway/adapter/builtin_service.h"
 
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -71,12 +70,12 @@ struct BuiltinRefereeService::Impl {
 
 void BuiltinRefereeService::Impl::run() {
   time::PeriodicTimer steps(pace, options.step_period);
-  time::Timestamp next_health = pace.now() + std::min(options.health_period, health.period());
+  time::Timestamp next_health = pace.now() + health.period(options.health_period);
   while (steps.wait_next()) {
     step();
     if (pace.now() >= next_health) {
       report_health();
-      next_health = pace.now() + std::min(options.health_period, health.period());  // 0.1 s while starting
+      next_health = pace.now() + health.period(options.health_period);
     }
   }
 }
@@ -162,7 +161,6 @@ void BuiltinRefereeService::Impl::save(const std::string& packet, time::Timestam
   const std::filesystem::path path(options.state_file);
   const std::filesystem::path written = path.string() + ".tmp";
   std::error_code error;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), error);
   {
     std::ofstream out(written, std::ios::binary | std::ios::trunc);
     out.write(packet.data(), static_cast<std::streamsize>(packet.size()));
@@ -273,6 +271,10 @@ Result<std::unique_ptr<BuiltinRefereeService>> BuiltinRefereeService::open(
   auto impl = std::make_unique<Impl>(options, std::move(*sender), std::move(*vision), std::move(*commands),
                                      std::move(*health), std::move(simulator), simulator_control, std::move(logger),
                                      wall);
+  if (const auto directory = std::filesystem::path(options.state_file).parent_path(); !directory.empty()) {
+    std::error_code ignored;  // a directory that cannot be made shows as failed writes (state_file_errors)
+    std::filesystem::create_directories(directory, ignored);
+  }
   impl->resume_saved_match();
   return std::unique_ptr<BuiltinRefereeService>(new BuiltinRefereeService(std::move(impl)));
 }

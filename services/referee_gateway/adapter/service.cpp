@@ -233,7 +233,7 @@ void RefereeGatewayService::Impl::report_health(time::Timestamp now) {
 void RefereeGatewayService::Impl::run() {
   std::vector<std::uint8_t> buffer(65536);
   last_report = monotonic.now();
-  time::Timestamp next_health = last_report + std::min(options.health_period, health.period());
+  time::Timestamp next_health = last_report + health.period(options.health_period);
   for (;;) {
     const net::ReceiveResult received = receiver.receive(buffer, 100ms);
     switch (received.status) {
@@ -265,7 +265,7 @@ void RefereeGatewayService::Impl::run() {
     const time::Timestamp now = monotonic.now();
     if (now >= next_health) {
       report_health(now);
-      next_health = now + std::min(options.health_period, health.period());  // 0.1 s while starting
+      next_health = now + health.period(options.health_period);
     }
   }
 }

@@ -2,7 +2,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <mutex>
@@ -139,7 +138,7 @@ void VisionGatewayService::Impl::handle(std::span<const std::uint8_t> bytes, con
 void VisionGatewayService::Impl::maybe_report(time::Timestamp now) {
   if (!period_start) period_start = now;
   const time::Duration elapsed = now - *period_start;
-  if (elapsed < std::min(options.health_period, health.period())) return;  // 0.1 s while starting
+  if (elapsed < health.period(options.health_period)) return;
   period_start = now;
 
   const double rate = static_cast<double>(frames_in_period) / time::to_seconds(elapsed);
