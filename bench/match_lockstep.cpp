@@ -2,9 +2,8 @@
 // (planner::testing::PlannedMatch: the Bullet simulator with realistic vision, both teams' world models and
 // planners ticking at 100 Hz, the built-in referee with the `simulation` profile as `./ssl up` runs it:
 // two halves of 300 s of playing time, half time, placements by the simulator), timed on the host's steady
-// clock: the real-time factor is simulated seconds per wall-clock second. Budget (issue 12): a 6 v 6 match
-// >= 20x real time. Prints the match report (sslctl match report's) of each match, and the 11 v 11
-// (division A) figure.
+// clock: the real-time factor is simulated seconds per wall-clock second (budgets: bench/budget_table.cpp).
+// Prints the match report (sslctl match report's) of each match, and the 11 v 11 (division A) figure.
 //
 //   build/bench/match_lockstep [--half S] [--seed N] [--robots 6|11|both]
 #include <algorithm>
@@ -26,6 +25,7 @@ struct Figures {
   double realtime_factor = 0;
   double simulated = 0;  // s
   bool final_whistle = false;
+  ssl::planner::MotionControl motion = ssl::planner::MotionControl::kTrajectory;
   double closest_robots = 1e9;  // m, the smallest centre distance of two robots in any frame
   std::uint64_t close_frames = 0;  // frames with two robots closer than 2 radii + 1 cm
   ssl::sslctl::MatchReport report;
@@ -44,6 +44,7 @@ Figures play(const ssl::sim::FieldGeometry& field, std::uint32_t robots, double 
   match.start_match();
   const auto start = std::chrono::steady_clock::now();
   Figures out;
+  out.motion = motion;
   out.final_whistle = match.run_until_final_whistle(
       std::chrono::hours(1), [&](const ssl::sim::DetectionFrame&, const ssl::sim::WorldSnapshot& truth) {
         report.on_referee(match.builtin_referee()->state(), truth.time);
@@ -64,12 +65,17 @@ Figures play(const ssl::sim::FieldGeometry& field, std::uint32_t robots, double 
   return out;
 }
 
-void print(const char* name, const Figures& f, const char* budget) {
-  std::printf("%s: %.0f s simulated (final whistle: %s), %.1fx real time%s\n", name, f.simulated,
-              f.final_whistle ? "yes" : "NO", f.realtime_factor, budget);
+/// `budget_key`: the key of the BUDGET line of the real-time factor (bench/budget_table.cpp).
+void print(const char* name, const Figures& f, const char* budget_key) {
+  std::printf("%s: %.0f s simulated (final whistle: %s), %.1fx real time\n", name, f.simulated,
+              f.final_whistle ? "yes" : "NO", f.realtime_factor);
   std::printf("closest two robots: %.3f m apart; frames with two closer than 2 radii + 1 cm: %llu\n",
               f.closest_robots, static_cast<unsigned long long>(f.close_frames));
   std::printf("%s\n", ssl::sslctl::to_text(f.report).c_str());
+  // The budget is for a whole match with the planner's own motion control.
+  if (f.final_whistle && f.motion == ssl::planner::MotionControl::kTrajectory) {
+    std::printf("BUDGET %s %.1f\n", budget_key, f.realtime_factor);
+  }
 }
 
 }  // namespace
@@ -138,11 +144,11 @@ int main(int argc, char** argv) {
               motion == ssl::planner::MotionControl::kSimple ? "simple" : "trajectory");
   if (robots != "11") {
     print("6 v 6 division B", play(ssl::sim::FieldGeometry::division_b(), 6, half, seed, motion),
-          " (budget >= 40x, ../shared/design.md)");
+          "lockstep_6v6_realtime_factor");
   }
   if (robots != "6") {
     print("11 v 11 division A", play(ssl::sim::FieldGeometry::division_a(), 11, half, seed, motion),
-          " (budget >= 30x with trajectories, planner II; design >= 50x)");
+          "lockstep_11v11_realtime_factor");
   }
   return 0;
 }

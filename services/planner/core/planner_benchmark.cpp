@@ -1,5 +1,5 @@
-// Planner tick, 11 v 11, under several referee commands (budget: p99 <= 2 ms for the full tick; with planner II's
-// trajectories p99 <= 1 ms).
+// Planner tick, 11 v 11, under several referee commands; the budget is on the match cycle with trajectories
+// (BM_PlannerTickMatchCycleTrajectoriesP99's p99_us, in ./ssl bench's table: bench/budget_table.cpp).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -47,7 +47,7 @@ void BM_PlannerTickOurPlacement(benchmark::State& s) {
 void BM_PlannerTickNormalPlay(benchmark::State& s) { run(s, RefereeCommand::kForceStart); }
 
 /// Cycles through the referee commands of a match (a command change every 50 ticks) and reports the
-/// tick-time percentiles as counters (p50_us, p99_us, max_us): the budget is p99 <= 2 ms.
+/// tick-time percentiles as counters (p50_us, p99_us, max_us).
 void match_cycle(benchmark::State& state, MotionControl motion) {
   Script script(Side{TeamColor::kYellow, false});
   script.default_teams();
@@ -89,7 +89,7 @@ void match_cycle(benchmark::State& state, MotionControl motion) {
   state.counters["max_us"] = at(1.0);
 }
 void BM_PlannerTickMatchCycleP99(benchmark::State& state) { match_cycle(state, MotionControl::kSimple); }
-/// The same with planner II's trajectories and path search (budget p99 <= 1 ms).
+/// The same with planner II's trajectories and path search (the budgeted figure).
 void BM_PlannerTickMatchCycleTrajectoriesP99(benchmark::State& state) {
   match_cycle(state, MotionControl::kTrajectory);
 }

@@ -1,6 +1,6 @@
 // Trajectory generation (1D, 2D with synchronised axes, 2D sampled every 0.1 s) from random states, and one
 // robot's path search among 22 obstacles with the way blocked, so that every candidate is generated
-// (budget: 100 us).
+// (BM_PathSearch22Obstacles: budgeted in ./ssl bench's table, bench/budget_table.cpp).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
