@@ -80,10 +80,11 @@ if [ -f "$dir/ca.pem" ] && [ -f "$dir/ca.key" ]; then
 elif [ -f "$dir/ca.pem" ] || [ -f "$dir/ca.key" ]; then
   fail "$dir has only one of ca.pem and ca.key: restore it or start over with --force"
 else
-  # A unique subject: two trust domains never look alike, even in logs.
+  # A unique subject: two trust domains never look alike, even in logs. digitalSignature: the CA also
+  # signs the governance and permissions (S/MIME), which Fast DDS verifies for that purpose.
   ca_subject="/O=SSL stack/OU=$(IFS=+; echo "${team_list[*]}")/CN=SSL stack CA $(hostname) $(date -u +%Y%m%dT%H%M%SZ) $RANDOM"
   quietly openssl req -x509 -new -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes -sha256 -days "$days" \
-    -subj "$ca_subject" -addext "basicConstraints=critical,CA:TRUE" -addext "keyUsage=critical,keyCertSign,cRLSign" \
+    -subj "$ca_subject" -addext "basicConstraints=critical,CA:TRUE" -addext "keyUsage=critical,digitalSignature,keyCertSign,cRLSign" \
     -keyout "$dir/ca.key" -out "$dir/ca.pem"
   echo "dds-certs: made a new CA in $dir"
 fi

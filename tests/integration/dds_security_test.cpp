@@ -236,8 +236,8 @@ TEST_F(DdsSecurityTest, OurWorldStateAndPlannerDebugReachOurReaderButNoIntruder)
   ASSERT_TRUE(legit_debug.wait_for_data(kMatchTimeout));
   std::this_thread::sleep_for(kIntruderWindow);  // the bounded time the intruders get, after legit data
 
-  EXPECT_GT(legit_world.counters().received, 10u);
-  EXPECT_GT(legit_debug.counters().received, 10u);
+  EXPECT_GT(legit_world.take().size(), 0u);
+  EXPECT_GT(legit_debug.take().size(), 0u);
   for (auto& reader : world_intruders) {
     EXPECT_EQ(reader.counters().matched_writers, 0u);
     EXPECT_TRUE(reader.take().empty());
@@ -299,12 +299,12 @@ TEST_F(DdsSecurityTest, OnlyOurOperatorReleasesOurEstop) {
   ASSERT_TRUE(our_estop.write(estop(true, "our operator")));
   ASSERT_TRUE(sim.wait_for(stopped, milliseconds(5000)));
 
-  // Intruders release it, to every team (both partitions) where their identity lets them write at all.
+  // Intruders release it: addressed to every team, to our team under a foreign CA, to the other team.
   auto stranger = create(unauthenticated(kDomain));
   auto impostor = create(foreign(kDomain, "operator"));
   auto yellow_operator = create(trusted(kDomain, "yellow-operator"));
   auto stranger_release = value_of(stranger.make_writer(dds::topics::kSystemEstop));
-  auto impostor_release = value_of(impostor.make_writer(dds::topics::kSystemEstop));
+  auto impostor_release = value_of(impostor.make_writer(dds::topics::kSystemEstop, TeamColor::kBlue));
   auto yellow_release = value_of(yellow_operator.make_writer(dds::topics::kSystemEstop, TeamColor::kYellow));
   {
     Repeater from_stranger(stranger_release, estop(false, "stranger"));
