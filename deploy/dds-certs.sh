@@ -15,8 +15,8 @@
 #                   it needs; its e-stop only in its own partition (robot_link's button)
 #   <team>-operator console or sslctl of one team: reads its team, writes system.params and its team's
 #                   system.estop
-#   operator        console or sslctl of everyone in this trust domain (the sim host): every team here
-#   discovery       the discovery server (fastdds discovery -x DIR/discovery-server.xml): no topics
+#   operator        console or sslctl of every team (the sim host, or a team's coach box): both team
+#                   partitions, also in a one-team CA, where nobody of the other team can authenticate
 #
 # Threat model: at a competition each team makes its own trust domain (--teams blue), so the other team
 # cannot even authenticate. An AI-vs-AI simulation shares one trust domain (--teams blue,yellow): there a
@@ -64,9 +64,8 @@ done
 [ ${#team_list[@]} -gt 0 ] || fail "--teams names no team"
 
 if [ "$force" -eq 1 ] && [ -d "$dir" ]; then
-  rm -f "$dir"/ca.pem "$dir"/ca.key "$dir"/ca.srl "$dir"/governance.xml "$dir"/governance.p7s \
-    "$dir"/discovery-server.xml
-  for identity in shared operator discovery blue blue-operator yellow yellow-operator; do
+  rm -f "$dir"/ca.pem "$dir"/ca.key "$dir"/ca.srl "$dir"/governance.xml "$dir"/governance.p7s
+  for identity in shared operator blue blue-operator yellow yellow-operator; do
     rm -rf "${dir:?}/$identity"
   done
 fi
@@ -202,11 +201,8 @@ rules_of() {
   case "$identity" in
     shared)
       echo "<publish><topics>$shared_topics</topics></publish><subscribe><topics>$shared_topics</topics></subscribe>" ;;
-    discovery)
-      # No topic: the server only relays discovery (an allow rule is needed to join the domain).
-      echo "<subscribe><topics><topic>ssl.discovery.none</topic></topics></subscribe>" ;;
     operator)
-      echo "<publish><topics>$team_topics<topic>system.estop</topic></topics>$(partitions "${team_list[@]}")</publish><subscribe><topics>$team_topics<topic>system.estop</topic></topics>$(partitions "${team_list[@]}")</subscribe>"
+      echo "<publish><topics>$team_topics<topic>system.estop</topic></topics>$(partitions blue yellow)</publish><subscribe><topics>$team_topics<topic>system.estop</topic></topics>$(partitions blue yellow)</subscribe>"
       echo "<publish><topics>$shared_topics</topics></publish><subscribe><topics>$shared_topics</topics></subscribe>" ;;
     *-operator)
       # One team's operator sets parameters but never forges vision or the referee for both teams.
@@ -221,7 +217,7 @@ rules_of() {
   esac
 }
 
-identities=(shared operator discovery)
+identities=(shared operator)
 for team in "${team_list[@]}"; do identities+=("$team" "$team-operator"); done
 
 for identity in "${identities[@]}"; do
@@ -243,31 +239,6 @@ for identity in "${identities[@]}"; do
   echo "dds-certs: made identity $identity"
 done
 
-# The discovery server's participant profile (fastdds discovery -x FILE).
-cat >"$dir/discovery-server.xml" <<EOF
-<?xml version="1.0" encoding="UTF-8"?>
-<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
-  <profiles>
-    <participant profile_name="ssl.discovery_server" is_default_profile="true">
-      <rtps>
-        <propertiesPolicy>
-          <properties>
-            <property><name>dds.sec.auth.plugin</name><value>builtin.PKI-DH</value></property>
-            <property><name>dds.sec.auth.builtin.PKI-DH.identity_ca</name><value>file://$dir/ca.pem</value></property>
-            <property><name>dds.sec.auth.builtin.PKI-DH.identity_certificate</name><value>file://$dir/discovery/cert.pem</value></property>
-            <property><name>dds.sec.auth.builtin.PKI-DH.private_key</name><value>file://$dir/discovery/key.pem</value></property>
-            <property><name>dds.sec.access.plugin</name><value>builtin.Access-Permissions</value></property>
-            <property><name>dds.sec.access.builtin.Access-Permissions.permissions_ca</name><value>file://$dir/ca.pem</value></property>
-            <property><name>dds.sec.access.builtin.Access-Permissions.governance</name><value>file://$dir/governance.p7s</value></property>
-            <property><name>dds.sec.access.builtin.Access-Permissions.permissions</name><value>file://$dir/discovery/permissions.p7s</value></property>
-            <property><name>dds.sec.crypto.plugin</name><value>builtin.AES-GCM-GMAC</value></property>
-          </properties>
-        </propertiesPolicy>
-      </rtps>
-    </participant>
-  </profiles>
-</dds>
-EOF
 # Everything readable by the services' group, private keys included (they run as one user; keep DIR's
 # own mode as tight as that user needs); the CA key only by its owner.
 chmod 0750 "$dir"

@@ -58,6 +58,10 @@ config::Fields<SiteDdsFile> site_dds_fields() {
     if (c.mode == DiscoveryMode::kPeers && c.peers.empty()) {
       return Error{"discovery: peers needs at least one entry in peers"};
     }
+    if (c.mode == DiscoveryMode::kServer && c.security.enabled) {
+      return Error{"discovery: server cannot be used with security.enabled: Fast DDS 2.9's discovery server "
+                   "cannot authenticate its clients; use peers (or multicast)"};
+    }
     return Status::success();
   });
   return fields;

@@ -44,6 +44,16 @@ TEST(SecurityConfig, ARelativeDirectoryIsABadConfig) {
   EXPECT_THAT(loaded.error().message, HasSubstr("not an absolute path"));
 }
 
+TEST(SecurityConfig, ADiscoveryServerWithSecurityIsABadConfig) {
+  const fs::path dir = fs::temp_directory_path() / ("ssl_security_server_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "dds.yaml") << "discovery: server\nservers: [127.0.0.1:11811]\nsecurity:\n  enabled: true\n";
+  auto loaded = site_config(dir.string());
+  fs::remove_all(dir);
+  ASSERT_FALSE(loaded);
+  EXPECT_THAT(loaded.error().message, HasSubstr("cannot authenticate"));
+}
+
 TEST(SecurityConfig, TheEnvironmentBeatsTheConfiguredDirectory) {
   ::setenv("SSL_CERTS_DIR", "/tmp/elsewhere", 1);
   EXPECT_EQ(security_directory({.enabled = true, .directory = "/etc/ssl-stack/certs"}), "/tmp/elsewhere");

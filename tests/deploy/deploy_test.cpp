@@ -573,14 +573,8 @@ TEST(Sites, TheSameServicesBindWhatEachSiteSays) {
   // runs (profile simulation) and sends there, and the gateway reads it as it would read a Game Controller.
   EXPECT_THAT(ports_once_bound(*ns, "referee_gateway", {"--site", "field", "--domain", "163"}, 10003),
               ::testing::Contains(10003));
-  // The field site's discovery server, where the site says it is (on the field PC, 198.18.0.1:11811).
+  // The field site's peers, where the site says they are (the field PC, 198.18.0.1), with its DDS Security.
   ASSERT_TRUE(NetNamespace::run_ip({"-n", ns->name(), "addr", "add", "198.18.0.1/15", "dev", "lo"}));
-  // With the field site's DDS Security, as ssl-discovery.service runs it there (SSL_DISCOVERY_FLAGS).
-  auto server = ChildProcess::start(
-      NetNamespace::ip(),
-      ns->exec_args("/usr/bin/fastdds", {"discovery", "-i", "0", "-l", "198.18.0.1", "-p", "11811", "-x",
-                                         (FieldCertificates::directory() / "discovery-server.xml").string()}));
-  ASSERT_TRUE(server) << server.error().message;
   for (const auto& [site, builtin] : std::vector<std::pair<std::string, bool>>{{"sim", true}, {"field", false}}) {
     auto gateway = ChildProcess::start(NetNamespace::ip(), ns->exec_args(bin_dir() / "referee_gateway",
                                                                           {"--site", site, "--domain", "163"}));
