@@ -197,7 +197,7 @@ EOF
 
 # rules_of IDENTITY: the allow_rule bodies of one identity, one per line.
 rules_of() {
-  local identity="$1" team estop_partitions
+  local identity="$1" team
   case "$identity" in
     shared)
       echo "<publish><topics>$shared_topics</topics></publish><subscribe><topics>$shared_topics</topics></subscribe>" ;;
