@@ -280,7 +280,7 @@ TEST_F(DdsSecurityTest, RobotLinkTakesRobotCommandsFromOurPlannerButNotFromIntru
       << output_of(robot_link);
 }
 
-TEST_F(DdsSecurityTest, OnlyOurOperatorReleasesOurEstop) {
+TEST_F(DdsSecurityTest, OurOperatorReleasesOurEstopButNoIntruderDoes) {
   constexpr int kDomain = 176;
   constexpr int kSimPort = 27312;
   SimStandIn sim(kSimPort);
