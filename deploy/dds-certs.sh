@@ -103,6 +103,19 @@ domains="<domains><id_range><min>0</min><max>232</max></id_range></domains>"
 # encrypted. Shared topics (vision, referee, system) are what every team may see anyway: signed, so that
 # nobody outside the trust domain can forge them, at a lower cost. Read and write access control
 # everywhere: a participant reads and writes only what its permissions grant.
+topic_rule() {  # topic_rule EXPRESSION METADATA_PROTECTION DATA_PROTECTION
+  cat <<EOF
+        <topic_rule>
+          <topic_expression>$1</topic_expression>
+          <enable_discovery_protection>true</enable_discovery_protection>
+          <enable_liveliness_protection>true</enable_liveliness_protection>
+          <enable_read_access_control>true</enable_read_access_control>
+          <enable_write_access_control>true</enable_write_access_control>
+          <metadata_protection_kind>$2</metadata_protection_kind>
+          <data_protection_kind>$3</data_protection_kind>
+        </topic_rule>
+EOF
+}
 if [ ! -f "$dir/governance.p7s" ]; then
   cat >"$dir/governance.xml" <<EOF
 <?xml version="1.0" encoding="UTF-8"?>
@@ -116,42 +129,10 @@ if [ ! -f "$dir/governance.p7s" ]; then
       <liveliness_protection_kind>ENCRYPT</liveliness_protection_kind>
       <rtps_protection_kind>NONE</rtps_protection_kind>
       <topic_access_rules>
-        <topic_rule>
-          <topic_expression>world.*</topic_expression>
-          <enable_discovery_protection>true</enable_discovery_protection>
-          <enable_liveliness_protection>true</enable_liveliness_protection>
-          <enable_read_access_control>true</enable_read_access_control>
-          <enable_write_access_control>true</enable_write_access_control>
-          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>
-          <data_protection_kind>ENCRYPT</data_protection_kind>
-        </topic_rule>
-        <topic_rule>
-          <topic_expression>robot.*</topic_expression>
-          <enable_discovery_protection>true</enable_discovery_protection>
-          <enable_liveliness_protection>true</enable_liveliness_protection>
-          <enable_read_access_control>true</enable_read_access_control>
-          <enable_write_access_control>true</enable_write_access_control>
-          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>
-          <data_protection_kind>ENCRYPT</data_protection_kind>
-        </topic_rule>
-        <topic_rule>
-          <topic_expression>planner.*</topic_expression>
-          <enable_discovery_protection>true</enable_discovery_protection>
-          <enable_liveliness_protection>true</enable_liveliness_protection>
-          <enable_read_access_control>true</enable_read_access_control>
-          <enable_write_access_control>true</enable_write_access_control>
-          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>
-          <data_protection_kind>ENCRYPT</data_protection_kind>
-        </topic_rule>
-        <topic_rule>
-          <topic_expression>*</topic_expression>
-          <enable_discovery_protection>true</enable_discovery_protection>
-          <enable_liveliness_protection>true</enable_liveliness_protection>
-          <enable_read_access_control>true</enable_read_access_control>
-          <enable_write_access_control>true</enable_write_access_control>
-          <metadata_protection_kind>SIGN</metadata_protection_kind>
-          <data_protection_kind>NONE</data_protection_kind>
-        </topic_rule>
+$(topic_rule 'world.*' ENCRYPT ENCRYPT)
+$(topic_rule 'robot.*' ENCRYPT ENCRYPT)
+$(topic_rule 'planner.*' ENCRYPT ENCRYPT)
+$(topic_rule '*' SIGN NONE)
       </topic_access_rules>
     </domain_rule>
   </domain_access_rules>

@@ -173,18 +173,31 @@ class Repeater {
   std::thread thread_;
 };
 
-ChildProcess start_robot_link(int domain, int sim_port, const std::string& site) {
-  return value_of(ChildProcess::start(
-      bin_dir() / "robot_link", {"--team", "blue", "--domain", std::to_string(domain), "--site", site, "--backend",
-                                 "sim", "--sim-host", "127.0.0.1", "--sim-port", std::to_string(sim_port),
-                                 "--interface", "127.0.0.1"}));
-}
-
 std::string output_of(ChildProcess& child) {
   std::string text;
   while (auto line = child.read_line(milliseconds(200))) text += *line + "\n";
   return text + child.drain_stderr();
 }
+
+/// The real robot_link of the blue team with security on, its simulator stand-in, and our planner's
+/// robot.commands writer (as the identity `blue`), matched with robot_link's reader once `matched()`.
+struct SecureRobotLink {
+  SecureRobotLink(int domain, int sim_port, const dds::ParticipantOptions& planner_options, const std::string& site)
+      : sim(sim_port),
+        process(value_of(ChildProcess::start(
+            bin_dir() / "robot_link",
+            {"--team", "blue", "--domain", std::to_string(domain), "--site", site, "--backend", "sim", "--sim-host",
+             "127.0.0.1", "--sim-port", std::to_string(sim_port), "--interface", "127.0.0.1"}))),
+        planner(value_of(dds::Participant::create(planner_options))),
+        commands(value_of(planner.make_writer(dds::topics::kRobotCommands, TeamColor::kBlue))) {}
+
+  bool matched() { return commands.wait_for_match(1, kMatchTimeout); }
+
+  SimStandIn sim;
+  ChildProcess process;
+  dds::Participant planner;
+  dds::Writer<idl::robot::RobotCommands> commands;
+};
 
 TEST_F(DdsSecurityTest, TheOtherTeamsIdentityMayNotEvenCreateEndpointsInOurPartition) {
   constexpr int kDomain = 173;
@@ -253,13 +266,9 @@ TEST_F(DdsSecurityTest, OurWorldStateAndPlannerDebugReachOurReaderButNoIntruder)
 
 TEST_F(DdsSecurityTest, RobotLinkTakesRobotCommandsFromOurPlannerButNotFromIntruders) {
   constexpr int kDomain = 175;
-  constexpr int kSimPort = 27311;
-  SimStandIn sim(kSimPort);
-  auto robot_link = start_robot_link(kDomain, kSimPort, site());
-
-  auto planner = create(trusted(kDomain, "blue"));
-  auto legit = value_of(planner.make_writer(dds::topics::kRobotCommands, TeamColor::kBlue));
-  ASSERT_TRUE(legit.wait_for_match(1, kMatchTimeout)) << output_of(robot_link);
+  SecureRobotLink link(kDomain, 27311, trusted(kDomain, "blue"), site());
+  ASSERT_TRUE(link.matched()) << output_of(link.process);
+  SimStandIn& sim = link.sim;
 
   auto stranger = create(unauthenticated(kDomain));
   auto impostor = create(foreign(kDomain, "blue"));
@@ -275,22 +284,18 @@ TEST_F(DdsSecurityTest, RobotLinkTakesRobotCommandsFromOurPlannerButNotFromIntru
   EXPECT_EQ(impostor_writer.counters().matched_readers, 0u);
 
   // Our planner's commands do move it.
-  Repeater from_planner(legit, drive(/*sideways=*/false));
+  Repeater from_planner(link.commands, drive(/*sideways=*/false));
   EXPECT_TRUE(sim.wait_for([](const ::RobotCommand& c) { return forward(c) > 0.5; }, milliseconds(10000)))
-      << output_of(robot_link);
+      << output_of(link.process);
 }
 
 TEST_F(DdsSecurityTest, OurOperatorReleasesOurEstopButNoIntruderDoes) {
   constexpr int kDomain = 176;
-  constexpr int kSimPort = 27312;
-  SimStandIn sim(kSimPort);
-  auto robot_link = start_robot_link(kDomain, kSimPort, site());
-
-  auto planner = create(trusted(kDomain, "blue"));
-  auto commands = value_of(planner.make_writer(dds::topics::kRobotCommands, TeamColor::kBlue));
-  ASSERT_TRUE(commands.wait_for_match(1, kMatchTimeout)) << output_of(robot_link);
-  Repeater from_planner(commands, drive(/*sideways=*/false));
-  ASSERT_TRUE(sim.wait_for(moving, milliseconds(10000))) << output_of(robot_link);
+  SecureRobotLink link(kDomain, 27312, trusted(kDomain, "blue"), site());
+  ASSERT_TRUE(link.matched()) << output_of(link.process);
+  SimStandIn& sim = link.sim;
+  Repeater from_planner(link.commands, drive(/*sideways=*/false));
+  ASSERT_TRUE(sim.wait_for(moving, milliseconds(10000))) << output_of(link.process);
 
   // Our operator engages our e-stop: robot 0 stops although the planner keeps driving.
   auto our_operator = create(trusted(kDomain, "blue-operator"));
@@ -318,7 +323,7 @@ TEST_F(DdsSecurityTest, OurOperatorReleasesOurEstopButNoIntruderDoes) {
 
   // Our operator's release does restore the planner's commands.
   ASSERT_TRUE(our_estop.write(estop(false, "our operator")));
-  EXPECT_TRUE(sim.wait_for(moving, milliseconds(5000))) << output_of(robot_link);
+  EXPECT_TRUE(sim.wait_for(moving, milliseconds(5000))) << output_of(link.process);
 }
 
 }  // namespace
