@@ -1,12 +1,14 @@
 // Round-trip latency between two processes through our DDS wrappers, beside a bare UDP socket round trip
-// measured in the same run, with their ratio.
+// measured in the same run, with their ratio; and the same DDS round trip with DDS Security on (certificates
+// made for the run by deploy/dds-certs.sh), with its ratio to security off.
 //
 // The parent sends a vision.detection frame (22 robots + ball, the size of a real frame) and the peer
 // process answers with a world.state (blue partition) carrying the same frame number; one message is in
 // flight at a time. Then the same ping-pong runs over two plain UDP sockets on 127.0.0.1 with the same
-// payload size. Both sides wait by blocking (condition variable, poll), as services do.
+// payload size. Both sides wait by blocking (condition variable, poll), as services do. With security the
+// ping is signed (a shared topic) and the answer encrypted (a team topic), as the governance says.
 //
-//   build/bench/dds_round_trip [--iterations N] [--domain D]
+//   build/bench/dds_round_trip [--iterations N] [--domain D]   (the secure run uses domain D + 1)
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -17,10 +19,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
+#include "libs/common/deploy_files.h"
 #include "libs/dds/participant.h"
 
 namespace {
@@ -68,8 +73,20 @@ int fail(const std::string& message) {
 
 // ---- DDS ---------------------------------------------------------------------------------------------
 
-int dds_peer(int domain) {
-  auto participant = ssl::dds::Participant::create({.domain_id = domain, .name = "bench/peer"});
+/// Security for a run: off with no directory, else on with the files in `certs`.
+ssl::dds::ParticipantOptions participant_options(int domain, const std::string& name, const std::string& certs,
+                                                 const std::string& identity) {
+  return {.domain_id = domain, .name = name, .security = {.enabled = !certs.empty(), .directory = certs},
+          .identity = identity};
+}
+
+// The answering side is a team stack (publishes its world.state), the pinging side an operator of every
+// team (it may publish vision and read the blue team's world.state).
+constexpr const char* kPeerIdentity = "blue";
+constexpr const char* kMainIdentity = "operator";
+
+int dds_peer(int domain, const std::string& certs) {
+  auto participant = ssl::dds::Participant::create(participant_options(domain, "bench/peer", certs, kPeerIdentity));
   if (!participant) return fail(participant.error().message);
   auto pings = participant->make_reader(ssl::dds::topics::kVisionDetection);
   auto pongs = participant->make_writer(ssl::dds::topics::kWorldState, ssl::TeamColor::kBlue);
@@ -87,8 +104,8 @@ int dds_peer(int domain) {
   return fail("peer heard nothing for 30 s");
 }
 
-ssl::Result<Stats> dds_round_trips(int domain, int iterations, const char* self) {
-  auto participant = ssl::dds::Participant::create({.domain_id = domain, .name = "bench/main"});
+ssl::Result<Stats> dds_round_trips(int domain, int iterations, const std::string& certs, const char* self) {
+  auto participant = ssl::dds::Participant::create(participant_options(domain, "bench/main", certs, kMainIdentity));
   if (!participant) return participant.error();
   auto pings = participant->make_writer(ssl::dds::topics::kVisionDetection);
   auto pongs = participant->make_reader(ssl::dds::topics::kWorldState, ssl::TeamColor::kBlue);
@@ -96,7 +113,7 @@ ssl::Result<Stats> dds_round_trips(int domain, int iterations, const char* self)
 
   const pid_t peer = fork();
   if (peer == 0) {
-    execl(self, self, "--peer-dds", std::to_string(domain).c_str(), nullptr);
+    execl(self, self, "--peer-dds", std::to_string(domain).c_str(), certs.c_str(), nullptr);
     _exit(127);
   }
   if (!pings->wait_for_match(1, seconds(20)) || !pongs->wait_for_match(1, seconds(20))) {
@@ -210,7 +227,7 @@ int main(int argc, char** argv) {
   int domain = 199;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--peer-dds" && i + 1 < argc) return dds_peer(std::stoi(argv[i + 1]));
+    if (arg == "--peer-dds" && i + 2 < argc) return dds_peer(std::stoi(argv[i + 1]), argv[i + 2]);
     if (arg == "--peer-udp" && i + 1 < argc) return udp_peer(static_cast<std::uint16_t>(std::stoi(argv[i + 1])));
     if (arg == "--iterations" && i + 1 < argc) {
       iterations = std::stoi(argv[++i]);
@@ -230,17 +247,33 @@ int main(int argc, char** argv) {
   auto frame = make_frame();
   const std::size_t payload = support.getSerializedSizeProvider(&frame)();
 
-  auto dds = dds_round_trips(domain, iterations, argv[0]);
+  auto dds = dds_round_trips(domain, iterations, "", argv[0]);
   if (!dds) return fail(dds.error().message);
+  // The security files of this run only, in a fresh directory ($SSL_CERTS_DIR would beat it).
+  ::unsetenv("SSL_CERTS_DIR");
+  const std::filesystem::path certs =
+      std::filesystem::temp_directory_path() / ("ssl_dds_round_trip_certs_" + std::to_string(::getpid()));
+  auto script = ssl::find_deploy_file("dds-certs.sh");
+  if (!script) return fail(script.error().message);
+  if (std::system(("'" + *script + "' --dir '" + certs.string() + "' --teams blue >/dev/null").c_str()) != 0) {
+    return fail("deploy/dds-certs.sh could not make the certificates (run it by hand to see why)");
+  }
+  auto secure = dds_round_trips(domain + 1, iterations, certs.string(), argv[0]);
+  std::filesystem::remove_all(certs);
+  if (!secure) return fail("with DDS Security: " + secure.error().message);
   auto udp = udp_round_trips(static_cast<std::uint16_t>(41000 + domain), iterations, payload, argv[0]);
   if (!udp) return fail(udp.error().message);
 
   std::printf("round trip between two processes, %d iterations, %zu-byte ping\n", iterations, payload);
   std::printf("  %-28s median %8.1f us   p99 %8.1f us   max %8.1f us\n", "DDS (our wrappers)", dds->median_us,
               dds->p99_us, dds->max_us);
+  std::printf("  %-28s median %8.1f us   p99 %8.1f us   max %8.1f us\n", "DDS with DDS Security",
+              secure->median_us, secure->p99_us, secure->max_us);
   std::printf("  %-28s median %8.1f us   p99 %8.1f us   max %8.1f us\n", "bare UDP socket", udp->median_us,
               udp->p99_us, udp->max_us);
   std::printf("  ratio DDS / UDP               median %8.2f x    p99 %8.2f x\n", dds->median_us / udp->median_us,
               dds->p99_us / udp->p99_us);
+  std::printf("  ratio secure / insecure DDS   median %8.2f x    p99 %8.2f x\n", secure->median_us / dds->median_us,
+              secure->p99_us / dds->p99_us);
   return 0;
 }

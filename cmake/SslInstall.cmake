@@ -21,6 +21,8 @@ set(SSL_INSTALL_DOCDIR opt/ssl-stack/share/doc)
 install(TARGETS simulator vision_gateway referee_gateway world_model planner robot_link console sslctl
         RUNTIME DESTINATION ${SSL_INSTALL_BINDIR})
 install(PROGRAMS ${CMAKE_SOURCE_DIR}/deploy/systemd/ssl-restart-backoff DESTINATION ${SSL_INSTALL_BINDIR})
+# DDS Security files on a match PC (what ./ssl certs runs): sudo ssl-dds-certs --dir /etc/ssl-stack/certs
+install(PROGRAMS ${CMAKE_SOURCE_DIR}/deploy/dds-certs.sh DESTINATION ${SSL_INSTALL_BINDIR} RENAME ssl-dds-certs)
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/deploy/config ${CMAKE_SOURCE_DIR}/deploy/qos ${CMAKE_SOURCE_DIR}/deploy/sites
         DESTINATION ${SSL_INSTALL_CONFDIR})
 install(FILES ${CMAKE_SOURCE_DIR}/README.md DESTINATION ${SSL_INSTALL_DOCDIR})

@@ -23,22 +23,29 @@ bool is_server_address(const std::string& text) {
   return value >= 1 && value <= 65535;
 }
 
-config::Fields<DiscoveryConfig> discovery_fields() {
+// The file as written: discovery's keys at the top level beside the security section.
+struct SiteDdsFile : DiscoveryConfig {
+  SecurityConfig security;
+};
+
+config::Fields<SiteDdsFile> site_dds_fields() {
   using namespace config;
-  Fields<DiscoveryConfig> fields{
-      field("discovery", &DiscoveryConfig::mode)
+  using File = SiteDdsFile;
+  Fields<File> fields{
+      field<File, DiscoveryMode>("discovery", &File::mode)
           .values({{"multicast", DiscoveryMode::kMulticast},
                    {"server", DiscoveryMode::kServer},
                    {"peers", DiscoveryMode::kPeers}})
           .doc("multicast (standard), server (clients of `servers`) or peers (unicast to `peers`)"),
-      optional_field("servers", &DiscoveryConfig::servers, {})
+      optional_field<File, std::vector<std::string>>("servers", &File::servers, {})
           .doc("server: discovery servers as IPv4 host:port, the i-th started with fastdds discovery -i i"),
-      optional_field("peers", &DiscoveryConfig::peers, {}).doc("peers: IPv4 addresses of the hosts"),
-      optional_field("peer_participants", &DiscoveryConfig::peer_participants, 16u)
+      optional_field<File, std::vector<std::string>>("peers", &File::peers, {}).doc("peers: IPv4 addresses of the hosts"),
+      optional_field<File, std::uint32_t>("peer_participants", &File::peer_participants, 16u)
           .range(1u, 120u)
           .doc("peers: participants per host and domain that are contacted"),
+      nested("security", &File::security, security_fields()),
   };
-  fields.check([](const DiscoveryConfig& c) -> Status {
+  fields.check([](const File& c) -> Status {
     for (const std::string& server : c.servers) {
       if (!is_server_address(server)) return Error{"servers: '" + server + "' is not an IPv4 host:port"};
     }
@@ -50,6 +57,10 @@ config::Fields<DiscoveryConfig> discovery_fields() {
     }
     if (c.mode == DiscoveryMode::kPeers && c.peers.empty()) {
       return Error{"discovery: peers needs at least one entry in peers"};
+    }
+    if (c.mode == DiscoveryMode::kServer && c.security.enabled) {
+      return Error{"discovery: server cannot be used with security.enabled: Fast DDS 2.9's discovery server "
+                   "cannot authenticate its clients; use peers (or multicast)"};
     }
     return Status::success();
   });
@@ -64,9 +75,11 @@ std::string join(const std::vector<std::string>& items) {
 
 }  // namespace
 
-Result<DiscoveryConfig> load_discovery_config(std::span<const std::string> files,
-                                              const std::vector<std::string>& overrides) {
-  return config::load_files(files, discovery_fields(), overrides);
+Result<SiteDdsConfig> load_site_dds_config(std::span<const std::string> files,
+                                           const std::vector<std::string>& overrides) {
+  auto file = config::load_files(files, site_dds_fields(), overrides);
+  if (!file) return file.error();
+  return SiteDdsConfig{.discovery = static_cast<const DiscoveryConfig&>(*file), .security = file->security};
 }
 
 std::string describe(const DiscoveryConfig& config) {

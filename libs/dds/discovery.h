@@ -1,5 +1,6 @@
 // How this process's participant finds the others on the network: the site's choice (deploy/config/dds.yaml,
-// laid over by sites/<site>/dds.yaml), the same for every process of a host.
+// laid over by sites/<site>/dds.yaml), the same for every process of a host. The same file's `security`
+// section is libs/dds/security.h's.
 //
 //   multicast: the standard DDS discovery (SPDP announcements on 239.255.0.1); needs a network that passes
 //              multicast between the hosts.
@@ -8,8 +9,8 @@
 //   peers:     announcements go by unicast to the hosts in `peers` (IPv4 addresses; each host's first
 //              `peer_participants` participants of the domain are contacted); no multicast, no server.
 //
-//   auto discovery = ssl::dds::load_discovery_config(*ssl::config_layers("dds", site, ""));
-//   auto participant = ssl::dds::Participant::create({.domain_id = 3, .discovery = *discovery});
+//   auto dds = ssl::dds::load_site_dds_config(*ssl::config_layers("dds", site, ""));
+//   auto participant = ssl::dds::Participant::create({.domain_id = 3, .discovery = dds->discovery});
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "libs/common/result.h"
+#include "libs/dds/security.h"
 
 namespace ssl::dds {
 
@@ -30,9 +32,15 @@ struct DiscoveryConfig {
   std::uint32_t peer_participants = 16;  // kPeers: participants per host and domain that are contacted
 };
 
+/// The site's dds config: discovery and security.
+struct SiteDdsConfig {
+  DiscoveryConfig discovery;
+  SecurityConfig security;
+};
+
 /// Loads the layered dds config (ssl::config_layers("dds", ...)); `overrides` as "key=value".
-Result<DiscoveryConfig> load_discovery_config(std::span<const std::string> files,
-                                              const std::vector<std::string>& overrides = {});
+Result<SiteDdsConfig> load_site_dds_config(std::span<const std::string> files,
+                                           const std::vector<std::string>& overrides = {});
 
 /// "multicast", "server 198.18.0.1:11811", "peers 198.18.0.1, 198.18.0.2": for logs.
 std::string describe(const DiscoveryConfig& config);

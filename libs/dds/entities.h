@@ -33,6 +33,7 @@ struct ParticipantState {
 
   int domain_id = 0;
   std::string qos_file;
+  std::string security_identity;  // "" without DDS Security
   eprosima::fastdds::dds::DomainParticipant* participant = nullptr;
   std::mutex mutex;
   std::map<std::string, eprosima::fastdds::dds::Publisher*> publishers;    // by profile name

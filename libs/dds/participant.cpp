@@ -134,7 +134,14 @@ Status load_profiles_once(const std::string& path) {
 
 std::string partition_profile(TopicScope scope, std::optional<TeamColor> team, std::string_view kind) {
   if (scope == TopicScope::kShared) return "shared." + std::string(kind);
+  if (!team) return "teams." + std::string(kind);  // kTeamAddressed, to every team
   return "team." + std::string(to_string(*team)) + "." + std::string(kind);
+}
+
+// Why creating an endpoint may have failed besides its QoS.
+std::string denied_hint(const detail::ParticipantState& state) {
+  if (state.security_identity.empty()) return "";
+  return ", or DDS Security's permissions of identity '" + state.security_identity + "' deny it";
 }
 
 Status check_team(std::string_view topic, TopicScope scope, std::optional<TeamColor> team) {
@@ -210,6 +217,25 @@ Status apply_discovery(const DiscoveryConfig& discovery, fdds::DomainParticipant
   return Error{"unknown discovery mode"};
 }
 
+// DDS Security through Fast DDS's builtin plugins, configured by participant properties.
+Status apply_security(const ParticipantOptions& options, fdds::DomainParticipantQos& qos) {
+  if (!options.security.enabled) return Status::success();
+  auto files = security_files(options.security, options.identity);
+  if (!files) return files.error();
+  auto& properties = qos.properties().properties();
+  const auto set = [&](const std::string& name, const std::string& value) { properties.emplace_back(name, value); };
+  set("dds.sec.auth.plugin", "builtin.PKI-DH");
+  set("dds.sec.auth.builtin.PKI-DH.identity_ca", "file://" + files->ca);
+  set("dds.sec.auth.builtin.PKI-DH.identity_certificate", "file://" + files->certificate);
+  set("dds.sec.auth.builtin.PKI-DH.private_key", "file://" + files->private_key);
+  set("dds.sec.access.plugin", "builtin.Access-Permissions");
+  set("dds.sec.access.builtin.Access-Permissions.permissions_ca", "file://" + files->ca);
+  set("dds.sec.access.builtin.Access-Permissions.governance", "file://" + files->governance);
+  set("dds.sec.access.builtin.Access-Permissions.permissions", "file://" + files->permissions);
+  set("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+  return Status::success();
+}
+
 }  // namespace
 
 Result<std::string> find_qos_file() {
@@ -240,11 +266,19 @@ Result<Participant> Participant::create(const ParticipantOptions& options) {
   qos.name(options.name);
   if (Status applied = apply_discovery(options.discovery, qos); !applied) return applied.error();
   apply_transports(options, qos);
+  if (Status secured = apply_security(options, qos); !secured) return secured.error();
   auto state = std::make_shared<detail::ParticipantState>();
   state->domain_id = options.domain_id;
   state->qos_file = qos_file;
+  if (options.security.enabled) state->security_identity = options.identity;
   state->participant = factory->create_participant(static_cast<fdds::DomainId_t>(options.domain_id), qos);
   if (state->participant == nullptr) {
+    if (options.security.enabled) {
+      return Error{"cannot create a secure DDS participant on domain " + std::to_string(options.domain_id) +
+                   " as " + describe(options.security, options.identity) +
+                   ": a certificate, key or signed document is broken, expired or not made by that directory's CA "
+                   "(Fast DDS logged which; ./ssl certs remakes missing files)"};
+    }
     return Error{"cannot create a DDS participant on domain " + std::to_string(options.domain_id)};
   }
   return Participant(std::move(state));
@@ -282,8 +316,8 @@ Result<std::shared_ptr<detail::WriterEntities>> Participant::create_writer(
   const std::string profile = entities->topic + ".writer";
   entities->writer = publisher->create_datawriter_with_profile(*topic, profile, &entities->status);
   if (entities->writer == nullptr) {
-    return Error{"cannot create a writer on '" + entities->topic + "' with QoS profile '" + profile + "' from " +
-                 state_->qos_file};
+    return Error{"cannot create a writer on '" + entities->topic + "' (" + publisher_profile + ") with QoS profile '" +
+                 profile + "' from " + state_->qos_file + denied_hint(*state_)};
   }
   return entities;
 }
@@ -318,8 +352,8 @@ Result<std::shared_ptr<detail::ReaderEntities>> Participant::create_reader(
   const std::string profile = entities->topic + ".reader";
   entities->reader = subscriber->create_datareader_with_profile(*topic, profile, &entities->status);
   if (entities->reader == nullptr) {
-    return Error{"cannot create a reader on '" + entities->topic + "' with QoS profile '" + profile + "' from " +
-                 state_->qos_file};
+    return Error{"cannot create a reader on '" + entities->topic + "' (" + subscriber_profile +
+                 ") with QoS profile '" + profile + "' from " + state_->qos_file + denied_hint(*state_)};
   }
   return entities;
 }

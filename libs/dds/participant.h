@@ -23,6 +23,7 @@
 #include "libs/common/team.h"
 #include "libs/dds/discovery.h"
 #include "libs/dds/reader.h"
+#include "libs/dds/security.h"
 #include "libs/dds/topics.h"
 #include "libs/dds/writer.h"
 
@@ -33,6 +34,8 @@ struct ParticipantOptions {
   std::string qos_file;     // Fast DDS XML profiles; empty: find_qos_file()
   std::string name = "ssl"; // participant name shown to discovery tools, e.g. "world_model/blue"
   DiscoveryConfig discovery;  // how it finds the others (the site's deploy/.../dds.yaml)
+  SecurityConfig security;    // DDS Security (the same file; off by default)
+  std::string identity;       // with security on: whose certificate and permissions (libs/dds/security.h)
 };
 
 /// Finds deploy/qos/profiles.xml: $SSL_QOS_FILE, else as ssl::find_deploy_file does.
@@ -40,11 +43,12 @@ Result<std::string> find_qos_file();
 
 class Participant {
  public:
-  /// Loads the QoS profiles (once per file and process) and creates the participant.
+  /// Loads the QoS profiles (once per file and process) and creates the participant; with security on, as
+  /// `options.identity`, whose files must exist (an error names the missing one).
   static Result<Participant> create(const ParticipantOptions& options);
 
-  /// A writer on `spec`'s topic with the profile "<topic>.writer". `team` selects the partition and is
-  /// required for team-scoped topics and rejected for shared ones.
+  /// A writer on `spec`'s topic with the profile "<topic>.writer". `team` selects the partition: required
+  /// for team-scoped topics, rejected for shared ones; for team-addressed ones, none means every team.
   template <typename Spec>
   Result<Writer<typename Spec::Sample>> make_writer(const Spec& spec,
                                                     std::optional<TeamColor> team = std::nullopt) {

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <set>
+#include <vector>
 #include <string>
 
 namespace ssl::dds {
@@ -96,6 +96,39 @@ TEST(ParticipantTest, TeamPartitionsKeepBlueAndYellowApart) {
   // The yellow reader never matched the blue writer, so nothing can be in flight towards it.
   EXPECT_EQ(yellow_reader->counters().matched_writers, 0u);
   EXPECT_TRUE(yellow_reader->take().empty());
+}
+
+TEST(ParticipantTest, AnEstopForOneTeamReachesOnlyItsReadersAndOneForEveryTeamReachesBoth) {
+  auto operator_side = make_participant(178);
+  auto links_side = make_participant(178);
+  auto for_blue = operator_side.make_writer(topics::kSystemEstop, TeamColor::kBlue);
+  auto for_everyone = operator_side.make_writer(topics::kSystemEstop);
+  auto blue_link = links_side.make_reader(topics::kSystemEstop, TeamColor::kBlue);
+  auto yellow_link = links_side.make_reader(topics::kSystemEstop, TeamColor::kYellow);
+  ASSERT_TRUE(for_blue && for_everyone && blue_link && yellow_link);
+  // Reliable and transient local: a matched reader gets what was written.
+  ASSERT_TRUE(blue_link->wait_for_match(2, kMatchTimeout));
+  ASSERT_TRUE(yellow_link->wait_for_match(1, kMatchTimeout));
+  // One at a time: the e-stop keeps only the newest sample.
+  const auto write = [](auto& writer, const std::string& source) {
+    idl::system::Estop estop;
+    estop.engaged(true);
+    estop.source(source);
+    ASSERT_TRUE(writer->write(estop).ok());
+    ASSERT_TRUE(writer->wait_for_acknowledgments(kMatchTimeout));
+  };
+  const auto sources = [](auto& reader) {
+    std::vector<std::string> seen;
+    for (const auto& sample : reader->take()) seen.push_back(sample.data.source());
+    return seen;
+  };
+  write(for_blue, "for blue");
+  EXPECT_EQ(sources(blue_link), std::vector<std::string>{"for blue"});
+  EXPECT_TRUE(sources(yellow_link).empty());
+  write(for_everyone, "for everyone");
+  EXPECT_EQ(sources(blue_link), std::vector<std::string>{"for everyone"});
+  EXPECT_EQ(sources(yellow_link), std::vector<std::string>{"for everyone"});
+  EXPECT_EQ(yellow_link->counters().matched_writers, 1u);
 }
 
 TEST(ParticipantTest, CallbackReaderSeesEverySampleOnTheMiddlewareThread) {

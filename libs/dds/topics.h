@@ -3,7 +3,9 @@
 // A topic's QoS comes only from the XML profiles "<name>.writer" and "<name>.reader" in
 // deploy/qos/profiles.xml. Team-scoped topics live in the DDS partition named after the team ("blue",
 // "yellow") so that two team stacks share one domain; shared topics (vision, referee, system) use the
-// default partition.
+// default partition. A team-addressed topic (system.estop) is written to one team's partition or to every
+// team's, and read in one team's (robot_link) or every team's (console): so that DDS Security's
+// permissions can let only a team's own operators release its e-stop (deploy/dds-certs.sh).
 //
 //   auto writer = participant.make_writer(ssl::dds::topics::kWorldState, ssl::TeamColor::kBlue);
 #pragma once
@@ -22,7 +24,11 @@
 
 namespace ssl::dds {
 
-enum class TopicScope { kShared, kTeam };
+enum class TopicScope {
+  kShared,         // default partition: both teams
+  kTeam,           // the team's partition only
+  kTeamAddressed,  // the partition of one team, or with no team given, of every team
+};
 
 /// A topic: `Sample` is the generated IDL class, `Support` its generated TopicDataType.
 template <typename SampleT, typename SupportT>
@@ -66,7 +72,7 @@ inline constexpr TopicSpec<idl::system::ParameterSet, idl::system::ParameterSetP
 inline constexpr TopicSpec<idl::system::ParameterState, idl::system::ParameterStatePubSubType> kSystemParamState{
     "system.param_state", TopicScope::kShared, "each service instance's run-time parameters and last answer"};
 inline constexpr TopicSpec<idl::system::Estop, idl::system::EstopPubSubType> kSystemEstop{
-    "system.estop", TopicScope::kShared, "emergency stop"};
+    "system.estop", TopicScope::kTeamAddressed, "emergency stop, of one team or of every team"};
 inline constexpr TopicSpec<idl::system::Health, idl::system::HealthPubSubType> kSystemHealth{
     "system.health", TopicScope::kShared, "per-service rate, latency and error counters"};
 

@@ -16,13 +16,14 @@ Result<Setup> prepare(std::string_view service, const std::string& site_flag, co
   }
   auto dds_layers = config_layers("dds", setup.site, "");
   if (!dds_layers) return dds_layers.error();
-  auto discovery = dds::load_discovery_config(*dds_layers);
-  if (!discovery) return discovery.error();
-  setup.discovery = std::move(*discovery);
+  auto dds = dds::load_site_dds_config(*dds_layers);
+  if (!dds) return dds.error();
+  setup.discovery = std::move(dds->discovery);
+  setup.security = std::move(dds->security);
   return setup;
 }
 
-std::string describe(const Setup& setup) {
+std::string describe(const Setup& setup, std::string_view identity) {
   std::string text = setup.site.empty() ? "no site" : "site " + setup.site;
   if (!setup.config_files.empty()) {
     text += ", config";
@@ -30,7 +31,8 @@ std::string describe(const Setup& setup) {
       text += (i == 0 ? " " : " + ") + setup.config_files[i];
     }
   }
-  return text + ", discovery " + dds::describe(setup.discovery);
+  return text + ", discovery " + dds::describe(setup.discovery) + ", DDS security " +
+         dds::describe(setup.security, identity);
 }
 
 }  // namespace ssl::service

@@ -1,11 +1,12 @@
 // What every executable of the stack does before its own work: pick the site (--site, else $SSL_SITE),
-// find the service's config layers for it, and load the site's DDS discovery. One place, so that the
+// find the service's config layers for it, and load the site's DDS discovery and security. One place, so that the
 // services, sslctl and the units all agree on what a site means.
 //
 //   auto setup = ssl::service::prepare("planner", flags.site, flags.config_file);
 //   if (!setup) { logger->critical("{}", setup.error().message); return 1; }
 //   auto config = ssl::planner::load_planner_config(setup->config_files, overrides);
-//   auto participant = ssl::dds::Participant::create({.domain_id = d, .name = n, .discovery = setup->discovery});
+//   auto participant = ssl::dds::Participant::create({.domain_id = d, .name = n, .discovery = setup->discovery,
+//       .security = setup->security, .identity = ssl::dds::identity::team_stack(team)});
 #pragma once
 
 #include <string>
@@ -23,6 +24,7 @@ struct Setup {
   std::vector<std::string> config_files;   // the service's config layers, lowest first
   std::string saved_parameters;            // where the instance saves its run-time parameters ("" none)
   dds::DiscoveryConfig discovery;          // the site's (deploy/config/dds.yaml + sites/<site>/dds.yaml)
+  dds::SecurityConfig security;            // the same files' security section
 };
 
 /// `service`: the config's name (config/<service>.yaml), or "" for a program without one (sslctl);
@@ -50,9 +52,9 @@ Result<std::pair<Setup, Config>> prepare_instance(std::string_view service, cons
   return std::pair<Setup, Config>{std::move(*with_saved), std::move(*config)};
 }
 
-/// "site sim: /etc/ssl-stack/config/planner.yaml + .../sites/sim/planner.yaml; discovery multicast": the
-/// startup log line.
-std::string describe(const Setup& setup);
+/// "site sim, config /etc/ssl-stack/config/planner.yaml + .../sites/sim/planner.yaml, discovery multicast,
+/// DDS security off": the startup log line (`identity`: the process's, libs/dds/security.h).
+std::string describe(const Setup& setup, std::string_view identity);
 
 /// The --site flag's help text.
 inline constexpr const char* kSiteHelp =

@@ -79,8 +79,12 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  logger->info("{}", ssl::service::describe(*setup));
-  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "console", .discovery = setup->discovery});
+  // The console serves both teams: it is the operator of every team of the trust domain.
+  const std::string identity = ssl::dds::identity::operator_of(std::nullopt);
+  logger->info("{}", ssl::service::describe(*setup, identity));
+  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "console",
+                                                    .discovery = setup->discovery, .security = setup->security,
+                                                    .identity = identity});
   if (!participant) {
     logger->critical("{}", participant.error().message);
     return 1;
@@ -94,7 +98,8 @@ int main(int argc, char** argv) {
       .simulator_control = config->simulator_control,
       .profile = *profile,
       .state = {.battery_low_volts = config->battery_low_volts, .link_low_quality = config->link_low_quality},
-      .estop_participant = {.domain_id = flags.domain, .name = "console/estop", .discovery = setup->discovery}};
+      .estop_participant = {.domain_id = flags.domain, .name = "console/estop", .discovery = setup->discovery,
+                            .security = setup->security, .identity = identity}};
   auto service = ssl::console::ConsoleService::create(options, *participant, logger);
   if (!service) {
     logger->critical("{}", service.error().message);

@@ -58,10 +58,10 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  logger->info("{}", ssl::service::describe(*setup));
+  logger->info("{}", ssl::service::describe(*setup, ssl::dds::identity::team_stack(*team)));
   ssl::Status ran = ssl::robot_link::run_robot_link(
       {.config = *config, .team = *team, .domain_id = flags.domain, .discovery = setup->discovery,
-       .saved_parameters = setup->saved_parameters},
+       .security = setup->security, .saved_parameters = setup->saved_parameters},
       shutdown, logger);
   if (!ran) {
     logger->critical("{}", ran.error().message);

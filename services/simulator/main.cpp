@@ -66,8 +66,10 @@ int main(int argc, char** argv) {
   std::optional<ssl::dds::Participant> participant;
   std::optional<ssl::dds::HealthReporter> health;
   if (!no_dds) {
-    logger->info("{}", ssl::service::describe(*setup));
-    auto created = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "simulator", .discovery = setup->discovery});
+    logger->info("{}", ssl::service::describe(*setup, ssl::dds::identity::kSharedServices));
+    auto created = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "simulator",
+                                                  .discovery = setup->discovery, .security = setup->security,
+                                                  .identity = std::string(ssl::dds::identity::kSharedServices)});
     if (!created) {
       logger->critical("{}", created.error().message);
       return 1;

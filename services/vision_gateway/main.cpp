@@ -52,8 +52,10 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  logger->info("{}", ssl::service::describe(*setup));
-  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "vision_gateway", .discovery = setup->discovery});
+  logger->info("{}", ssl::service::describe(*setup, ssl::dds::identity::kSharedServices));
+  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "vision_gateway",
+                                                    .discovery = setup->discovery, .security = setup->security,
+                                                    .identity = std::string(ssl::dds::identity::kSharedServices)});
   if (!participant) {
     logger->critical("{}", participant.error().message);
     return 1;

@@ -47,8 +47,11 @@ int main(int argc, char** argv) {
   }
 
   const std::string team(ssl::to_string(config->team));
-  logger->info("{}", ssl::service::describe(*setup));
-  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "world_model/" + team, .discovery = setup->discovery});
+  const std::string identity = ssl::dds::identity::team_stack(config->team);
+  logger->info("{}", ssl::service::describe(*setup, identity));
+  auto participant = ssl::dds::Participant::create({.domain_id = flags.domain, .name = "world_model/" + team,
+                                                    .discovery = setup->discovery, .security = setup->security,
+                                                    .identity = identity});
   if (!participant) {
     logger->critical("{}", participant.error().message);
     return 1;

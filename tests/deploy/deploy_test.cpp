@@ -3,7 +3,9 @@
 // unit passes `systemd-analyze verify`, each unit's ExecStart runs exactly as written with its environment
 // file, the Debian package declares its dependencies and installs, each site makes the same services bind
 // what it says, and a discovery server connects participants that multicast would not. Each test uses its
-// own DDS domain (160-169); the tests that need root (network namespaces, installing) skip without it.
+// own DDS domain (160-169); the tests that need root (network namespaces, installing) skip without it. The
+// field site has DDS Security on: the suite makes its certificates (deploy/dds-certs.sh) and points every
+// process at them ($SSL_CERTS_DIR).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <poll.h>
@@ -27,6 +29,7 @@
 #include <thread>
 #include <vector>
 
+#include "libs/common/deploy_files.h"
 #include "libs/common/team.h"
 #include "libs/dds/participant.h"
 #include "libs/dds/topics.h"
@@ -44,6 +47,22 @@ using ::testing::Not;
 
 const std::vector<std::string> kExecutables{"simulator",   "vision_gateway", "referee_gateway", "world_model",
                                             "planner",     "robot_link",     "console",        "sslctl"};
+/// The field site's DDS Security files, made once for the suite; children inherit $SSL_CERTS_DIR.
+class FieldCertificates : public ::testing::Environment {
+ public:
+  static fs::path directory() { return fs::temp_directory_path() / ("ssl_deploy_certs_" + std::to_string(::getpid())); }
+
+  void SetUp() override {
+    auto script = find_deploy_file("dds-certs.sh");
+    ASSERT_TRUE(script) << script.error().message;
+    const ShellRun made = shell("'" + *script + "' --dir '" + directory().string() + "' --teams blue,yellow");
+    ASSERT_EQ(made.status, 0) << made.output;
+    ::setenv("SSL_CERTS_DIR", directory().c_str(), 1);
+  }
+  void TearDown() override { fs::remove_all(directory()); }
+};
+[[maybe_unused]] const auto* const kFieldCertificates = ::testing::AddGlobalTestEnvironment(new FieldCertificates);
+
 const std::vector<std::string> kUnits{"ssl-latency.slice", "ssl-bulk.slice", "ssl-discovery.service", "ssl-simulator.service",
                                       "ssl-vision-gateway.service", "ssl-referee-gateway.service",
                                       "ssl-robot-link@.service",   "ssl-world-model@.service",
@@ -554,11 +573,8 @@ TEST(Sites, TheSameServicesBindWhatEachSiteSays) {
   // runs (profile simulation) and sends there, and the gateway reads it as it would read a Game Controller.
   EXPECT_THAT(ports_once_bound(*ns, "referee_gateway", {"--site", "field", "--domain", "163"}, 10003),
               ::testing::Contains(10003));
-  // The field site's discovery server, where the site says it is (on the field PC, 198.18.0.1:11811).
+  // The field site's peers, where the site says they are (the field PC, 198.18.0.1), with its DDS Security.
   ASSERT_TRUE(NetNamespace::run_ip({"-n", ns->name(), "addr", "add", "198.18.0.1/15", "dev", "lo"}));
-  auto server = ChildProcess::start(NetNamespace::ip(), ns->exec_args("/usr/bin/fastdds", {"discovery", "-i", "0", "-l",
-                                                                                          "198.18.0.1", "-p", "11811"}));
-  ASSERT_TRUE(server) << server.error().message;
   for (const auto& [site, builtin] : std::vector<std::pair<std::string, bool>>{{"sim", true}, {"field", false}}) {
     auto gateway = ChildProcess::start(NetNamespace::ip(), ns->exec_args(bin_dir() / "referee_gateway",
                                                                           {"--site", site, "--domain", "163"}));

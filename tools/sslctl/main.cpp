@@ -97,7 +97,8 @@ int main(int argc, char** argv) {
   std::string estop_state;
   std::string estop_reason = "operator";
   double estop_linger = -1;
-  auto* estop_cmd = app.add_subcommand("estop", "engage (on) or release (off) the emergency stop");
+  auto* estop_cmd = app.add_subcommand(
+      "estop", "engage (on) or release (off) the emergency stop of --team, or of every team without it");
   estop_cmd->add_option("state", estop_state, "on or off")->required()->check(CLI::IsMember({"on", "off"}));
   estop_cmd->add_option("--reason", estop_reason, "why, shown to every service");
   estop_cmd->add_option("--linger", estop_linger,
@@ -213,13 +214,16 @@ int main(int argc, char** argv) {
     return ssl::sslctl::topic_pub(pub, shutdown, std::cout, std::cerr);
   }
   if (estop_cmd->parsed()) {
+    apply_team(estop_dds, estop_team);
     return ssl::sslctl::estop(estop_state == "on", estop_reason, estop_dds, estop_linger, shutdown, std::cout,
                               std::cerr);
   }
   if (health_cmd->parsed()) {
+    apply_team(health_dds, health_team);
     return ssl::sslctl::health(health_dds, health_listen, health_json, shutdown, std::cout, std::cerr);
   }
   if (latency_cmd->parsed()) return ssl::sslctl::latency(latency, shutdown, std::cout, std::cerr);
+  apply_team(param_options.dds, param_team);
   if (param_list_cmd->parsed()) return ssl::sslctl::param_list(param_options, shutdown, std::cout, std::cerr);
   if (param_get_cmd->parsed()) return ssl::sslctl::param_get(param_options, shutdown, std::cout, std::cerr);
   if (param_set_cmd->parsed()) return ssl::sslctl::param_set(param_options, shutdown, std::cout, std::cerr);

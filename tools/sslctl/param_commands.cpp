@@ -80,7 +80,7 @@ struct ParamEndpoints {
 };
 
 std::optional<ParamEndpoints> open_endpoints(const ParamOptions& options, bool writer, std::ostream& err) {
-  auto participant = open_participant(options.dds.domain_id, options.dds.site, "sslctl/param");
+  auto participant = open_participant(options.dds.domain_id, options.dds.site, options.dds.team, "sslctl/param");
   if (!participant) {
     err << "sslctl: " << participant.error().message << '\n';
     return std::nullopt;

@@ -30,12 +30,12 @@ std::int64_t wall_clock_unix_ns() {
 
 int estop(bool engage, const std::string& reason, const DdsOptions& dds_options, double linger_s,
           ShutdownSignal& shutdown, std::ostream& out, std::ostream& err) {
-  auto participant = open_participant(dds_options.domain_id, dds_options.site, "sslctl/estop");
+  auto participant = open_participant(dds_options.domain_id, dds_options.site, dds_options.team, "sslctl/estop");
   if (!participant) {
     err << "sslctl: " << participant.error().message << '\n';
     return 1;
   }
-  auto writer = participant->make_writer(dds::topics::kSystemEstop);
+  auto writer = participant->make_writer(dds::topics::kSystemEstop, dds_options.team);
   if (!writer) {
     err << "sslctl: " << writer.error().message << '\n';
     return 1;
@@ -50,7 +50,9 @@ int estop(bool engage, const std::string& reason, const DdsOptions& dds_options,
     return 1;
   }
   writer->wait_for_acknowledgments(std::chrono::seconds(2));
-  out << "e-stop " << (engage ? "ENGAGED" : "released") << " on domain " << dds_options.domain_id << " ("
+  out << "e-stop " << (engage ? "ENGAGED" : "released") << " for "
+      << (dds_options.team ? "team " + std::string(to_string(*dds_options.team)) : std::string("every team"))
+      << " on domain " << dds_options.domain_id << " ("
       << writer->counters().matched_readers << " reader(s) matched)\n" << std::flush;
   // The sample stays available to late joiners only while this writer lives.
   if (linger_s < 0) {
@@ -63,7 +65,7 @@ int estop(bool engage, const std::string& reason, const DdsOptions& dds_options,
 
 int health(const DdsOptions& dds_options, double listen_s, bool json, ShutdownSignal& shutdown,
            std::ostream& out, std::ostream& err) {
-  auto participant = open_participant(dds_options.domain_id, dds_options.site, "sslctl/health");
+  auto participant = open_participant(dds_options.domain_id, dds_options.site, dds_options.team, "sslctl/health");
   if (!participant) {
     err << "sslctl: " << participant.error().message << '\n';
     return 1;
@@ -112,7 +114,7 @@ struct Stage {
 }  // namespace
 
 int latency(const LatencyOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err) {
-  auto participant = open_participant(options.domain_id, options.site, "sslctl/latency");
+  auto participant = open_participant(options.domain_id, options.site, std::nullopt, "sslctl/latency");
   if (!participant) {
     err << "sslctl: " << participant.error().message << '\n';
     return 1;

@@ -30,10 +30,16 @@ nanoseconds seconds_to_ns(double seconds) {
 }
 
 std::string_view scope_name(dds::TopicScope scope) {
-  return scope == dds::TopicScope::kTeam ? "team" : "shared";
+  switch (scope) {
+    case dds::TopicScope::kShared: return "shared";
+    case dds::TopicScope::kTeam: return "team";
+    case dds::TopicScope::kTeamAddressed: return "team or all";
+  }
+  return "?";
 }
 
-/// The team argument for a topic: required for team-scoped topics, refused for shared ones.
+/// The team argument for a topic: required for team-scoped topics, ignored for shared ones, optional for
+/// team-addressed ones (none: every team).
 Result<std::optional<TeamColor>> team_for(dds::TopicScope scope, std::string_view topic,
                                           const DdsOptions& options) {
   if (scope == dds::TopicScope::kTeam && !options.team) {
@@ -55,7 +61,7 @@ auto open_endpoint(const Spec& spec, const DdsOptions& options, const std::strin
     status = 2;
     return std::nullopt;
   }
-  auto participant = open_participant(options.domain_id, options.site, participant_name);
+  auto participant = open_participant(options.domain_id, options.site, options.team, participant_name);
   if (!participant) {
     err << "sslctl: " << participant.error().message << '\n';
     status = 1;
@@ -239,10 +245,12 @@ int topic_pub(const PubOptions& options, ShutdownSignal& shutdown, std::ostream&
   return known ? status : unknown_topic(options.topic, err);
 }
 
-Result<dds::Participant> open_participant(int domain_id, const std::string& site, std::string name) {
+Result<dds::Participant> open_participant(int domain_id, const std::string& site, std::optional<TeamColor> team,
+                                          std::string name) {
   auto setup = service::prepare("", site, "");
   if (!setup) return setup.error();
-  return dds::Participant::create({.domain_id = domain_id, .name = std::move(name), .discovery = setup->discovery});
+  return dds::Participant::create({.domain_id = domain_id, .name = std::move(name), .discovery = setup->discovery,
+                                   .security = setup->security, .identity = dds::identity::operator_of(team)});
 }
 
 }  // namespace ssl::sslctl

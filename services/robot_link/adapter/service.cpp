@@ -154,7 +154,10 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
     }
   }
 
-  auto participant = dds::Participant::create({.domain_id = options.domain_id, .name = instance, .discovery = options.discovery});
+  const std::string identity = dds::identity::team_stack(team);
+  auto participant = dds::Participant::create({.domain_id = options.domain_id, .name = instance,
+                                               .discovery = options.discovery, .security = options.security,
+                                               .identity = identity});
   if (!participant) return participant.error();
   // Readers are polled from the loop (no middleware callbacks: nothing of ours runs on Fast DDS threads,
   // and no callback can run before a reader is fully created).
@@ -162,20 +165,25 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
   if (!commands_reader) return commands_reader.error();
   auto referee_reader = participant->make_reader(dds::topics::kRefereeState);
   if (!referee_reader) return referee_reader.error();
-  auto estop_reader = participant->make_reader(dds::topics::kSystemEstop);
+  // E-stops for our team: addressed to it, or to every team. With DDS Security only our own operators and
+  // stack may write them (deploy/dds-certs.sh), so no other team can release ours.
+  auto estop_reader = participant->make_reader(dds::topics::kSystemEstop, team);
   if (!estop_reader) return estop_reader.error();
   auto feedback_writer = participant->make_writer(dds::topics::kRobotFeedback, team);
   if (!feedback_writer) return feedback_writer.error();
   // The local e-stop inputs publish on system.estop through a participant of their own: Fast DDS does not
   // keep a writer's liveliness asserted towards readers of its own participant, so our reader would
-  // see our own writer "lost" a second after each write.
+  // see our own writer "lost" a second after each write. They address our team only: our button never
+  // commands the other team's robots.
   std::optional<dds::Participant> estop_participant;
   std::optional<dds::Writer<idl::system::Estop>> estop_writer;
   if (estop_device || keyboard) {
-    auto created = dds::Participant::create({.domain_id = options.domain_id, .name = instance + "/estop", .discovery = options.discovery});
+    auto created = dds::Participant::create({.domain_id = options.domain_id, .name = instance + "/estop",
+                                             .discovery = options.discovery, .security = options.security,
+                                             .identity = identity});
     if (!created) return created.error();
     estop_participant.emplace(std::move(*created));
-    auto writer = estop_participant->make_writer(dds::topics::kSystemEstop);
+    auto writer = estop_participant->make_writer(dds::topics::kSystemEstop, team);
     if (!writer) return writer.error();
     estop_writer.emplace(std::move(*writer));
   }
@@ -194,7 +202,8 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
   logger->info("{}: robot.commands on domain {} -> {} at {} Hz, watchdog {} ms", instance, options.domain_id,
                (*backend)->description(), config.send_rate, std::lround(config.command_timeout * 1000));
 
-  // A local e-stop input: latch here at once, and tell every other stack through system.estop.
+  // A local e-stop input: latch here at once, and tell the rest of our team's stack (and the console)
+  // through system.estop.
   const auto local_estop = [&](bool engaged, const std::string& source, const std::string& reason) {
     mailbox.on_estop(engaged, source, reason);
     if (estop_writer) {
