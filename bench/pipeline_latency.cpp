@@ -281,8 +281,17 @@ ssl::Result<PipelineResult> run_pipeline(const Options& options) {
     if (!started) return started.error();
   }
   // world_model, planner and robot_link read referee.state; robot_link writes robot.sent.
+  // What the services said, for an error.
+  const auto their_words = [&] {
+    std::string words;
+    for (ChildProcess& child : children) {
+      words += '\n';
+      words += child.drain_stderr();
+    }
+    return words;
+  };
   if (!referee_writer->wait_for_match(3, kStartTimeout) || !sent_reader->wait_for_match(1, kStartTimeout)) {
-    return ssl::Error{"the services did not come up within 30 s"};
+    return ssl::Error{"the services did not come up within 30 s" + their_words()};
   }
   auto vision = ssl::net::MulticastSender::open("224.5.23.2", options.port, "127.0.0.1");
   if (!vision) return vision.error();
@@ -298,7 +307,9 @@ ssl::Result<PipelineResult> run_pipeline(const Options& options) {
     return std::any_of(sent.begin(), sent.end(), [](const Sent& s) { return s.frame_number > 0; });
   };
   while (!reached_radio()) {
-    if (SteadyClock::now() - t0 > kStartTimeout) return ssl::Error{"no command descending from a frame within 30 s"};
+    if (SteadyClock::now() - t0 > kStartTimeout) {
+      return ssl::Error{"no command descending from a frame within 30 s" + their_words()};
+    }
     frames.send_frame(number++, t0, send_vision, keep_drained);
   }
   const std::uint32_t first_measured = number + kWarmupFrames;
