@@ -160,18 +160,19 @@ int latency(const LatencyOptions& options, ShutdownSignal& shutdown, std::ostrea
           add(4 + team, sample.data.stamp().receive_unix_ns(), sample.reception_unix_ns);
         });
     // Only the packet that first carried a sample: a heartbeat's resend is not the path's latency.
-    auto out = participant->make_reader(
+    auto packets = participant->make_reader(
         dds::topics::kRobotSent, color, [&add, team](const dds::Sample<idl::robot::CommandsSent>& sample) {
           if (!sample.data.resend()) add(6 + team, sample.data.stamp().receive_unix_ns(), sample.data.sent_unix_ns());
         });
-    if (!world || !command || !out) {
+    if (!world || !command || !packets) {
       err << "sslctl: "
-          << (!world ? world.error().message : !command ? command.error().message : out.error().message) << '\n';
+          << (!world ? world.error().message : !command ? command.error().message : packets.error().message)
+          << '\n';
       return 1;
     }
     worlds.push_back(std::move(*world));
     commands.push_back(std::move(*command));
-    sent.push_back(std::move(*out));
+    sent.push_back(std::move(*packets));
   }
   shutdown.wait_for(duration_cast<nanoseconds>(duration<double>(options.listen_s)));
   // Stop the callbacks (delete the readers) before reading what they collected.

@@ -78,7 +78,9 @@ TEST(RobotLinkRunnerTest, SleepsBetweenHeartbeatsEveryPeriodAndTheWatchdogStopsA
     ASSERT_TRUE(clock.wait_for_sleepers(1, std::chrono::seconds(5))) << "at " << ms << " ms";
     clock.advance(milliseconds(1));
     // The packet due now has left before the clock moves on.
-    if (ms % 10 == 0) ASSERT_TRUE(backend.wait_for_sends(static_cast<std::size_t>(ms / 10 + 1))) << ms;
+    if (ms % 10 == 0) {
+      ASSERT_TRUE(backend.wait_for_sends(static_cast<std::size_t>(ms / 10 + 1))) << ms;
+    }
   }
   ASSERT_TRUE(clock.wait_for_sleepers(1, std::chrono::seconds(5)));
   clock.stop();
