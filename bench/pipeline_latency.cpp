@@ -224,6 +224,7 @@ void drain(std::vector<ChildProcess>& children) {
 // ---- the pipeline ----------------------------------------------------------------------------------
 
 struct Sent {
+  std::int64_t gateway_receive_ns;  // the frame's VisionStamp
   std::int64_t sent_ns;
   std::uint32_t camera;
   std::uint32_t frame_number;
@@ -232,6 +233,11 @@ struct Sent {
 
 struct PipelineResult {
   Stats stats;
+  // Where the time goes (same packets): sendto -> vision_gateway receive, -> robot_link send returned,
+  // -> this process's receive.
+  Stats to_gateway;
+  Stats through_services;
+  Stats to_here;
   std::size_t frames_sent = 0;
   std::size_t packets = 0;
   std::size_t heartbeats = 0;
@@ -252,7 +258,7 @@ ssl::Result<PipelineResult> run_pipeline(const Options& options) {
       ssl::dds::topics::kRobotSent, ssl::TeamColor::kBlue,
       [&](const ssl::dds::Sample<ssl::idl::robot::CommandsSent>& sample) {
         std::lock_guard lock(sent_mutex);
-        sent.push_back({sample.data.sent_unix_ns(), sample.data.stamp().camera_id(),
+        sent.push_back({sample.data.stamp().receive_unix_ns(), sample.data.sent_unix_ns(), sample.data.stamp().camera_id(),
                         sample.data.stamp().frame_number(), sample.data.resend()});
       });
   auto referee_writer = participant->make_writer(ssl::dds::topics::kRefereeState);
@@ -325,6 +331,9 @@ ssl::Result<PipelineResult> run_pipeline(const Options& options) {
   PipelineResult result;
   result.frames_sent = static_cast<std::size_t>(options.frames) * options.cameras;
   std::vector<double> ms;
+  std::vector<double> to_gateway_ms;
+  std::vector<double> through_services_ms;
+  std::vector<double> to_here_ms;
   std::size_t d = 0;
   std::size_t s = 0;
   while (d < datagrams.size() && s < sent.size()) {
@@ -344,12 +353,18 @@ ssl::Result<PipelineResult> run_pipeline(const Options& options) {
         ++result.heartbeats;
       } else if (const std::int64_t in = frames.sent_ns(packet.camera, packet.frame_number); in > 0) {
         ms.push_back(static_cast<double>(datagrams[d].at_ns - in) * 1e-6);
+        to_gateway_ms.push_back(static_cast<double>(packet.gateway_receive_ns - in) * 1e-6);
+        through_services_ms.push_back(static_cast<double>(packet.sent_ns - packet.gateway_receive_ns) * 1e-6);
+        to_here_ms.push_back(static_cast<double>(datagrams[d].at_ns - packet.sent_ns) * 1e-6);
       }
     }
     ++d;
     ++s;
   }
   result.stats = summarize(std::move(ms));
+  result.to_gateway = summarize(std::move(to_gateway_ms));
+  result.through_services = summarize(std::move(through_services_ms));
+  result.to_here = summarize(std::move(to_here_ms));
   if (result.stats.count == 0) return ssl::Error{"no command datagram could be paired with its frame"};
   return result;
 }
@@ -486,6 +501,12 @@ int main(int argc, char** argv) {
                 "new commands; %zu heartbeats)\n",
                 "pipeline: vision_gateway, world_model, planner, robot_link", p.median_ms, p.p99_ms, p.max_ms,
                 p.count, pipeline->frames_sent, pipeline->heartbeats);
+    for (const auto& [name, stage] : {std::pair{"  of which sendto -> vision_gateway receive", &pipeline->to_gateway},
+                                      std::pair{"  of which -> robot_link's send returned", &pipeline->through_services},
+                                      std::pair{"  of which -> datagram received here", &pipeline->to_here}}) {
+      std::printf("  %-58s median %7.3f ms   p99 %7.3f ms   max %7.3f ms\n", name, stage->median_ms, stage->p99_ms,
+                  stage->max_ms);
+    }
     std::printf("  %-58s median %7.3f ms   p99 %7.3f ms   max %7.3f ms   (%zu frames)\n",
                 "bare UDP relay, 4 processes", relay->median_ms, relay->p99_ms, relay->max_ms, relay->count);
     std::printf("  %-58s median %7.1f x    p99 %7.1f x\n", "ratio pipeline / relay", p.median_ms / relay->median_ms,
