@@ -20,7 +20,8 @@
 // sending what it got to the next, the last to this process; the same packets at the same times. Measured
 // from sendto() to receive, the frame recognised by its content.
 //
-// Prints median, p99 and max of both and their ratios, and "BUDGET <name> <value>" lines for ./ssl bench.
+// Prints median, p99 and max of both, their ratios and where the pipeline's time goes (from robot.sent's
+// stamps), and "BUDGET <name> <value>" lines for ./ssl bench.
 // Exits non-zero only when it cannot run (a process does not start, nothing arrives); a budget it misses
 // is reported, not failed. Figures taken on a loaded machine are noisy: `uptime` is printed beside them.
 //
