@@ -145,7 +145,7 @@ fi
 # --- permissions -------------------------------------------------------------------------------------
 # Fast DDS applies, per topic, the first allow_rule that lists it, and pools the partitions of that rule's
 # criteria: so team topics (in team partitions) and shared topics (default partition) get separate rules.
-team_topics="<topic>world.state</topic><topic>robot.commands</topic><topic>robot.feedback</topic><topic>planner.debug</topic>"
+team_topics="<topic>world.state</topic><topic>robot.commands</topic><topic>robot.sent</topic><topic>robot.feedback</topic><topic>planner.debug</topic>"
 shared_topics="<topic>vision.*</topic><topic>referee.*</topic><topic>system.params</topic><topic>system.param_state</topic><topic>system.health</topic>"
 
 partitions() {  # partitions TEAM...

@@ -207,7 +207,7 @@ TEST(ParticipantTest, KeyedTopicsTakeEveryRobotIdAndEveryServiceInstance) {
 
 TEST(ParticipantTest, AllTopicsAreListedWithTypesAndProfiles) {
   const auto topics = all_topics();
-  ASSERT_EQ(topics.size(), 13u);
+  ASSERT_EQ(topics.size(), 14u);
   EXPECT_EQ(topics[0].name, "vision.detection");
   EXPECT_EQ(topics[0].type_name, "ssl::idl::vision::DetectionFrame");
   EXPECT_EQ(topics[0].writer_profile, "vision.detection.writer");

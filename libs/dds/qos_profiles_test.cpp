@@ -64,7 +64,7 @@ TEST_F(QosProfilesTest, EveryTopicHasAWriterAndAReaderProfileWithMatchingReliabi
 }
 
 TEST_F(QosProfilesTest, HighRateStreamsAreBestEffortKeepLastOne) {
-  for (const char* name : {"vision.detection", "world.state", "robot.commands", "robot.feedback", "planner.debug"}) {
+  for (const char* name : {"vision.detection", "world.state", "robot.commands", "robot.sent", "robot.feedback", "planner.debug"}) {
     SCOPED_TRACE(name);
     const auto writer = writer_qos(std::string(name) + ".writer");
     EXPECT_EQ(writer.reliability().kind, fdds::BEST_EFFORT_RELIABILITY_QOS);

@@ -63,6 +63,8 @@ inline constexpr TopicSpec<idl::world::WorldState, idl::world::WorldStatePubSubT
     "world.state", TopicScope::kTeam, "filtered ball and robots, team frame"};
 inline constexpr TopicSpec<idl::robot::RobotCommands, idl::robot::RobotCommandsPubSubType> kRobotCommands{
     "robot.commands", TopicScope::kTeam, "every robot's command, one sample per planner tick"};
+inline constexpr TopicSpec<idl::robot::CommandsSent, idl::robot::CommandsSentPubSubType> kRobotSent{
+    "robot.sent", TopicScope::kTeam, "per command packet robot_link sent: its robot.commands sample and send time"};
 inline constexpr TopicSpec<idl::robot::RobotFeedback, idl::robot::RobotFeedbackPubSubType> kRobotFeedback{
     "robot.feedback", TopicScope::kTeam, "per-robot feedback: dribbler contact, battery, kicker"};
 inline constexpr TopicSpec<idl::planner::PlannerDebug, idl::planner::PlannerDebugPubSubType> kPlannerDebug{
@@ -78,7 +80,7 @@ inline constexpr TopicSpec<idl::system::Health, idl::system::HealthPubSubType> k
 
 /// All topics, for tools that work on any topic by name.
 inline constexpr auto kAll = std::make_tuple(kVisionDetection, kVisionGeometry, kRefereeState, kRefereeEvent,
-                                             kRefereeCommand, kWorldState, kRobotCommands, kRobotFeedback, kPlannerDebug,
+                                             kRefereeCommand, kWorldState, kRobotCommands, kRobotSent, kRobotFeedback, kPlannerDebug,
                                              kSystemParams, kSystemParamState, kSystemEstop, kSystemHealth);
 
 }  // namespace topics

@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
   }
   logger->info("team {}, domain {}, ticking {}", team, flags.domain,
                config->tick_mode == ssl::planner::TickMode::kOnWorldState
-                   ? fmt::format("on every world.state, at most {} Hz", config->max_rate)
+                   ? std::string("on every world.state as it arrives")
                    : fmt::format("at {} Hz", config->tick_rate));
   node->run(shutdown);
   logger->info("stopping");

@@ -71,9 +71,9 @@ Fields<PlannerServiceConfig> service_fields() {
           .doc("our colour: the partition of world.state, robot.commands and planner.debug"),
       field("tick_mode", &PlannerServiceConfig::tick_mode)
           .values({{"on_world_state", TickMode::kOnWorldState}, {"fixed_rate", TickMode::kFixedRate}})
-          .doc("on_world_state: tick on every new world.state, at most max_rate Hz; fixed_rate: tick_rate Hz"),
+          .doc("on_world_state: tick on every new world.state as soon as it arrives (once the previous tick is "
+               "done); fixed_rate: tick_rate Hz"),
       field("tick_rate", &PlannerServiceConfig::tick_rate).unit("Hz").range(1, 1000).doc("fixed_rate only"),
-      field("max_rate", &PlannerServiceConfig::max_rate).unit("Hz").range(1, 1000).doc("on_world_state only"),
       field("stale_world_timeout", &PlannerServiceConfig::stale_world_timeout).unit("s").range(0.01, 10)
           .doc("without world.state this long: no ticks, nothing published, health WARN"),
       field("default_division", &PlannerServiceConfig::default_division)
@@ -92,7 +92,9 @@ namespace {
 /// What the core takes from the service's keys.
 void fill_derived(PlannerServiceConfig& c) {
   c.core.team = c.team;
-  c.core.tick_period = 1.0 / (c.tick_mode == TickMode::kFixedRate ? c.tick_rate : c.max_rate);
+  // The first tick's dt (later ticks use the time since the previous one); on_world_state keeps the core's
+  // nominal value.
+  if (c.tick_mode == TickMode::kFixedRate) c.core.tick_period = 1.0 / c.tick_rate;
   c.core.default_field = division_field(c.default_division);
 }
 

@@ -15,8 +15,10 @@
 namespace ssl::planner {
 
 /// When the planner ticks.
-///  kOnWorldState: on every new world.state sample (the vision rate), at most max_rate Hz (samples that
-///                 arrive sooner are folded into the next tick);
+///  kOnWorldState: on every new world.state sample (the vision rate) as soon as it arrives, once the
+///                 previous tick is done (samples that arrive during a tick are folded into the next: the
+///                 newest wins). No rate cap: a tick's own duration bounds the rate, and robot_link's
+///                 token bucket bounds what reaches the radio;
 ///  kFixedRate:    at tick_rate Hz with the newest world.state (none while it is stale).
 enum class TickMode { kOnWorldState, kFixedRate };
 
@@ -24,10 +26,9 @@ struct PlannerServiceConfig {
   TeamColor team = TeamColor::kBlue;
   TickMode tick_mode = TickMode::kOnWorldState;
   double tick_rate = 100;                 // Hz, kFixedRate
-  double max_rate = 200;                  // Hz, kOnWorldState
   double stale_world_timeout = 0.1;       // s without world.state: no ticks, health WARN "no world state"
   Division default_division = Division::kA;  // field until vision.geometry arrives
-  PlannerConfig core;                     // team, tick_period and default_field are filled from the above
+  PlannerConfig core;                     // team, default_field (and tick_period with kFixedRate) are filled from the above
 };
 
 /// The rulebook's field of a division (metres).

@@ -22,8 +22,7 @@ TEST(PlannerConfig, DeployedFileLoadsWithTheDocumentedDefaults) {
   EXPECT_EQ(config->team, TeamColor::kBlue);
   EXPECT_EQ(config->core.team, TeamColor::kBlue);
   EXPECT_EQ(config->tick_mode, TickMode::kOnWorldState);
-  EXPECT_DOUBLE_EQ(config->max_rate, 100);
-  EXPECT_DOUBLE_EQ(config->core.tick_period, 0.01);
+  EXPECT_DOUBLE_EQ(config->core.tick_period, 0.01) << "the core's nominal first dt";
   EXPECT_DOUBLE_EQ(config->core.stop_speed, 1.5);
   EXPECT_DOUBLE_EQ(config->core.limits.max_speed, 3.0);
   EXPECT_EQ(config->default_division, Division::kA);
@@ -78,7 +77,11 @@ TEST(PlannerConfig, BadValuesAreRejectedWithTheKeyNamed) {
 
   auto unknown = load_planner_config(deployed(), {"tick_mod=fixed_rate"});
   EXPECT_FALSE(unknown);
-  EXPECT_FALSE(load_planner_config(deployed(), {"max_rate=nan"}));
+  EXPECT_FALSE(load_planner_config(deployed(), {"tick_rate=nan"}));
+  // The on_world_state rate cap is gone: a config still setting it is told so, not silently obeyed.
+  auto old_cap = load_planner_config(deployed(), {"max_rate=100"});
+  ASSERT_FALSE(old_cap);
+  EXPECT_NE(old_cap.error().message.find("max_rate"), std::string::npos) << old_cap.error().message;
   EXPECT_FALSE(load_planner_config("/nonexistent/planner.yaml", {}));
 }
 

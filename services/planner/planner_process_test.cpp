@@ -1,5 +1,5 @@
-// The planner as a real process, end to end through DDS, on its own domains (230, 231; 232 for the
-// in-process node test). `sslctl topic pub` stands in for world_model (world.state with robots and a ball)
+// The planner as a real process, end to end through DDS, on its own domains (230, 231; 232 and 171 for the
+// in-process node tests). `sslctl topic pub` stands in for world_model (world.state with robots and a ball)
 // and referee_gateway (referee.state HALT, then STOP); a DDS reader here (and `sslctl topic echo`) reads
 // robot.commands and planner.debug. Checked: HALT gives all-zero commands; STOP keeps every robot at or
 // below 1.5 m/s; commands carry the world state's VisionStamp; planner.debug names the play; without
@@ -323,12 +323,12 @@ TEST(PlannerProcess, CommandLine) {
   auto missing = start("planner", {"--config", "/nonexistent/planner.yaml"});
   EXPECT_EQ(missing.wait(kTimeout), 1);
 
-  auto print = start("planner", {"--print-config", "--team", "yellow", "--set", "max_rate=50"});
+  auto print = start("planner", {"--print-config", "--team", "yellow", "--set", "tick_rate=50"});
   std::string printed;
   while (auto line = print.read_line(10s)) printed += *line + "\n";
   EXPECT_EQ(print.wait(kTimeout), 0);
   EXPECT_NE(printed.find("team: yellow"), std::string::npos) << printed;
-  EXPECT_NE(printed.find("max_rate: 50"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("tick_rate: 50"), std::string::npos) << printed;
 
   auto tree = start("planner", {"--print-tree"});
   std::string ascii;
@@ -411,6 +411,49 @@ TEST(PlannerNodeInProcess, NonFiniteInputsAreRejectedAndCounted) {
   clock.advance(std::chrono::milliseconds(500));
   for (int i = 0; i < 10; ++i) node->poll();
   EXPECT_EQ(node->counters().ticks, 1u);
+}
+
+// The node in-process (domain 171) on a simulated clock that never moves: every world.state is planned on
+// as soon as it is taken, however soon after the previous tick (no hold-off), and its commands carry that
+// sample's stamp.
+TEST(PlannerNodeInProcess, EveryWorldStateIsPlannedOnAtOnce) {
+  constexpr int kDomain = 171;
+  auto participant = dds::Participant::create({.domain_id = kDomain, .name = "planner_node_at_once_test"});
+  ASSERT_TRUE(participant) << participant.error().message;
+  auto path = find_deploy_file("config/planner.yaml");
+  ASSERT_TRUE(path) << path.error().message;
+  auto config = load_planner_config(*path, {});
+  ASSERT_TRUE(config) << config.error().message;
+  time::SimulatedClock clock(time::Timestamp::from_seconds(1.7e9));
+  auto node = PlannerNode::create(*participant, *config, clock);
+  ASSERT_TRUE(node) << node.error().message;
+  auto world_writer = participant->make_writer(dds::topics::kWorldState, TeamColor::kBlue);
+  auto commands = participant->make_reader(dds::topics::kRobotCommands, TeamColor::kBlue);
+  ASSERT_TRUE(world_writer && commands);
+  ASSERT_TRUE(world_writer->wait_for_match(1, kTimeout));
+  ASSERT_TRUE(commands->wait_for_match(1, kTimeout));
+
+  idl::world::WorldState world;
+  world.team(idl::common::TEAM_COLOR_BLUE);
+  idl::world::RobotState robot;
+  robot.id(1);
+  robot.visible(true);
+  robot.pose().x(-1.0);
+  world.friendly().push_back(robot);
+  for (std::uint32_t frame = 1; frame <= 3; ++frame) {
+    world.stamp().frame_number(frame);
+    ASSERT_TRUE(world_writer->write(world));
+    const auto deadline = SteadyClock::now() + 10s;
+    while (node->counters().ticks < frame && SteadyClock::now() < deadline) {
+      node->poll();
+      std::this_thread::sleep_for(1ms);  // polling for data that is on its way, not for discovery
+    }
+    ASSERT_EQ(node->counters().ticks, frame) << "the same simulated instant as the previous tick";
+    ASSERT_TRUE(commands->wait_for_data(kTimeout));
+    auto sample = commands->take_latest();
+    ASSERT_TRUE(sample);
+    EXPECT_EQ(sample->data.stamp().frame_number(), frame);
+  }
 }
 
 }  // namespace

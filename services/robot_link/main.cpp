@@ -1,6 +1,7 @@
 // robot_link: one team's robot.commands -> the simulator (simulation protocol or grSim) or the robots'
-// radio, at a fixed rate, behind the safety layer (watchdog, referee HALT, latched e-stop, limits); robot
-// feedback -> robot.feedback. Flags override keys of deploy/config/robot_link.yaml.
+// radio (new commands at once within the radio's rate, a heartbeat otherwise), behind the safety layer
+// (watchdog, referee HALT, latched e-stop, limits); robot feedback -> robot.feedback. Flags override keys
+// of deploy/config/robot_link.yaml.
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>

@@ -62,7 +62,8 @@ Fields<RobotLinkConfig> robot_link_fields() {
       field("send_rate", &RobotLinkConfig::send_rate)
           .unit("Hz")
           .range(1, 1000)
-          .doc("commands are sent at this fixed rate"),
+          .doc("the radio's rate: new commands leave at once within it (token bucket, burst 2), and with nothing "
+               "new the last ones are resent this often (heartbeat)"),
       field("command_timeout", &RobotLinkConfig::command_timeout)
           .unit("s")
           .range(0.005, 10)

@@ -35,7 +35,7 @@ struct RadioConfig {
 struct RobotLinkConfig {
   std::string team;  // "blue", "yellow" or "" (then --team is required)
   BackendKind backend = BackendKind::kSim;
-  double send_rate = 100;         // Hz, fixed rate of the commands sent
+  double send_rate = 100;         // Hz, the radio's rate (SendSchedule): token bucket rate and heartbeat
   double command_timeout = 0.1;   // s, watchdog
   double startup_stop = 0.5;      // s, uncommanded ids get stops this long after start
   std::string interface_address;  // local address of the UDP sockets

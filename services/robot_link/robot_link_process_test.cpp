@@ -196,7 +196,7 @@ TEST(RobotLinkProcessTest, WatchdogStopsTheRobotWithin100MsWhenThePlannerIsKille
   RecordProperty("stop_after_kill_ms", static_cast<int>(to_stop.count()));
   std::cout << "robot 0 stopped " << to_stop.count() << " ms after the planner was killed\n";
 
-  // It stays stopped, and datagrams keep flowing at the fixed rate without a planner.
+  // It stays stopped, and datagrams keep flowing (the heartbeat, every 10 ms) without a planner.
   const int after = sim.all_for(stopped, milliseconds(500), "after the planner died");
   EXPECT_GE(after, 25) << "about 50 datagrams at 100 Hz";
   EXPECT_EQ(planner.wait(kTimeout), 128 + SIGKILL);

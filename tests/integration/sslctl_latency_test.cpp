@@ -1,7 +1,9 @@
 // `sslctl latency` as an operator runs it: a child process listening on a private domain (158) while this
 // test writes vision.detection, world.state (blue) and robot.commands (blue) stamped as if vision_gateway
 // had received their camera frame 5 ms before each write. The per-stage figures it prints must show those
-// 5 ms (plus DDS delivery), for exactly the stages that had samples.
+// 5 ms (plus DDS delivery), for exactly the stages that had samples. robot.sent (blue) carries robot_link's
+// own send stamp, 4 ms after the gateway's: that stage shows exactly 4 ms, and heartbeat resends (stamped
+// as if 50 ms late) are not counted.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -40,7 +42,9 @@ TEST(SslctlLatency, ReportsTheTimeSinceTheGatewayReceivedTheFramePerStage) {
   auto vision = value_of(participant.make_writer(dds::topics::kVisionDetection));
   auto world = value_of(participant.make_writer(dds::topics::kWorldState, TeamColor::kBlue));
   auto commands = value_of(participant.make_writer(dds::topics::kRobotCommands, TeamColor::kBlue));
+  auto sent = value_of(participant.make_writer(dds::topics::kRobotSent, TeamColor::kBlue));
   ASSERT_TRUE(vision.wait_for_match(1, kTimeout));
+  ASSERT_TRUE(sent.wait_for_match(1, kTimeout));
   ASSERT_TRUE(world.wait_for_match(1, kTimeout));
   ASSERT_TRUE(commands.wait_for_match(1, kTimeout));
   constexpr std::int64_t kGatewayAgo = 5'000'000;  // ns
@@ -56,6 +60,13 @@ TEST(SslctlLatency, ReportsTheTimeSinceTheGatewayReceivedTheFramePerStage) {
     idl::robot::RobotCommands sample;
     sample.stamp().receive_unix_ns(now_ns() - kGatewayAgo);
     ASSERT_TRUE(commands.write(sample));
+    idl::robot::CommandsSent out;
+    out.stamp().receive_unix_ns(now_ns() - kGatewayAgo);
+    out.sent_unix_ns(out.stamp().receive_unix_ns() + 4'000'000);
+    ASSERT_TRUE(sent.write(out));
+    out.resend(true);
+    out.sent_unix_ns(out.stamp().receive_unix_ns() + 50'000'000);
+    ASSERT_TRUE(sent.write(out));
     std::this_thread::sleep_for(10ms);  // paces the writes (100 Hz), not a wait for discovery
   }
   std::map<std::string, nlohmann::json> stages;
@@ -70,16 +81,23 @@ TEST(SslctlLatency, ReportsTheTimeSinceTheGatewayReceivedTheFramePerStage) {
     EXPECT_GE(stages[name]["p50_ms"].get<double>(), 5.0) << name;
     EXPECT_LT(stages[name]["p50_ms"].get<double>(), 50.0) << name;
   }
+  const char* out = "command out of robot_link/blue";
+  ASSERT_TRUE(stages.count(out));
+  EXPECT_GE(stages[out]["samples"].get<int>(), 25);
+  EXPECT_LE(stages[out]["samples"].get<int>(), 60) << "resends are not counted";
+  EXPECT_NEAR(stages[out]["p50_ms"].get<double>(), 4.0, 1e-3);
+  EXPECT_NEAR(stages[out]["max_ms"].get<double>(), 4.0, 1e-3) << "resends are not counted";
   ASSERT_TRUE(stages.count("vision delay"));
   EXPECT_NEAR(stages["vision delay"]["p50_ms"].get<double>(), 12.0, 1e-3);
   EXPECT_FALSE(stages.count("world.state/yellow")) << "no yellow samples were written";
+  EXPECT_FALSE(stages.count("command out of robot_link/yellow"));
 }
 
 TEST(SslctlLatency, NothingToMeasureIsAnError) {
   auto child = ChildProcess::start(bin_dir() / "sslctl", {"latency", "--domain", "159", "--listen", "0.5"});
   ASSERT_TRUE(child) << child.error().message;
   EXPECT_EQ(child->wait(kTimeout), 1);
-  EXPECT_NE(child->drain_stderr().find("no vision.detection, world.state or robot.commands sample"),
+  EXPECT_NE(child->drain_stderr().find("no vision.detection, world.state, robot.commands or robot.sent sample"),
             std::string::npos);
 }
 

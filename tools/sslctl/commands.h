@@ -97,8 +97,10 @@ struct LatencyOptions {
 
 /// `sslctl latency`: the pipeline's latency per stage, from the VisionStamp every vision-derived sample
 /// carries: for vision.detection, world.state and robot.commands (both teams) the time from vision_gateway
-/// receiving the camera frame to this process receiving the sample (p50 / p99 / max, ms), and the vision
-/// delay (capture -> gateway receive). Clocks: the gateway's and this host's wall clocks (on different
+/// receiving the camera frame to this process receiving the sample (p50 / p99 / max, ms); the last stage,
+/// "command out of robot_link" (both teams), to the command packet leaving robot_link (robot.sent, robot_link's
+/// own stamp; the packet that first carried each sample, not heartbeat resends); and the vision delay
+/// (capture -> gateway receive). Clocks: the gateway's and this host's wall clocks (on different
 /// hosts they must be synchronised, e.g. by PTP or chrony). 1 when nothing arrived.
 int latency(const LatencyOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err);
 

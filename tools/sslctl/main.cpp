@@ -116,7 +116,8 @@ int main(int argc, char** argv) {
 
   ssl::sslctl::LatencyOptions latency;
   auto* latency_cmd = app.add_subcommand(
-      "latency", "pipeline latency per stage from the vision stamps (vision_gateway receive -> each topic)");
+      "latency", "pipeline latency per stage from the vision stamps (vision_gateway receive -> each topic, and -> "
+      "command out of robot_link)");
   latency_cmd->add_option("--listen", latency.listen_s, "collect this many seconds")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

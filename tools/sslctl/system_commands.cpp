@@ -127,6 +127,9 @@ int latency(const LatencyOptions& options, ShutdownSignal& shutdown, std::ostrea
       {"world.state/yellow", from_gateway, {}},
       {"robot.commands/blue", from_gateway, {}},
       {"robot.commands/yellow", from_gateway, {}},
+      // robot_link's own stamp of when the packet left (robot.sent): the end of the path.
+      {"command out of robot_link/blue", "vision_gateway receive -> command packet out of robot_link", {}},
+      {"command out of robot_link/yellow", "vision_gateway receive -> command packet out of robot_link", {}},
   };
   // Callback readers: every sample counts when it arrives (a polled keep-last-1 reader would miss some),
   // with the time it arrived. The callbacks run on Fast DDS threads.
@@ -147,6 +150,7 @@ int latency(const LatencyOptions& options, ShutdownSignal& shutdown, std::ostrea
   }
   std::vector<dds::Reader<idl::world::WorldState>> worlds;
   std::vector<dds::Reader<idl::robot::RobotCommands>> commands;
+  std::vector<dds::Reader<idl::robot::CommandsSent>> sent;
   for (const std::size_t team : {0u, 1u}) {
     const TeamColor color = team == 0 ? TeamColor::kBlue : TeamColor::kYellow;
     auto world = participant->make_reader(
@@ -157,22 +161,31 @@ int latency(const LatencyOptions& options, ShutdownSignal& shutdown, std::ostrea
         dds::topics::kRobotCommands, color, [&add, team](const dds::Sample<idl::robot::RobotCommands>& sample) {
           add(4 + team, sample.data.stamp().receive_unix_ns(), sample.reception_unix_ns);
         });
-    if (!world || !command) {
-      err << "sslctl: " << (!world ? world.error().message : command.error().message) << '\n';
+    // Only the packet that first carried a sample: a heartbeat's resend is not the path's latency.
+    auto packets = participant->make_reader(
+        dds::topics::kRobotSent, color, [&add, team](const dds::Sample<idl::robot::CommandsSent>& sample) {
+          if (!sample.data.resend()) add(6 + team, sample.data.stamp().receive_unix_ns(), sample.data.sent_unix_ns());
+        });
+    if (!world || !command || !packets) {
+      err << "sslctl: "
+          << (!world ? world.error().message : !command ? command.error().message : packets.error().message)
+          << '\n';
       return 1;
     }
     worlds.push_back(std::move(*world));
     commands.push_back(std::move(*command));
+    sent.push_back(std::move(*packets));
   }
   shutdown.wait_for(duration_cast<nanoseconds>(duration<double>(options.listen_s)));
   // Stop the callbacks (delete the readers) before reading what they collected.
   { auto closed = std::move(*vision); }
   worlds.clear();
   commands.clear();
+  sent.clear();
   std::lock_guard lock(mutex);
   bool any = false;
   if (!options.json) {
-    out << std::left << std::setw(24) << "STAGE" << std::setw(9) << "SAMPLES" << std::setw(10) << "P50 ms"
+    out << std::left << std::setw(34) << "STAGE" << std::setw(9) << "SAMPLES" << std::setw(10) << "P50 ms"
         << std::setw(10) << "P99 ms" << std::setw(10) << "MAX ms" << "SPAN\n";
   }
   for (Stage& stage : stages) {
@@ -188,12 +201,12 @@ int latency(const LatencyOptions& options, ShutdownSignal& shutdown, std::ostrea
           << '\n';
       continue;
     }
-    out << std::left << std::setw(24) << stage.name << std::setw(9) << stage.ms.size() << std::fixed
+    out << std::left << std::setw(34) << stage.name << std::setw(9) << stage.ms.size() << std::fixed
         << std::setprecision(3) << std::setw(10) << p50 << std::setw(10) << p99 << std::setw(10) << max
         << stage.path << '\n';
   }
   if (!any) {
-    err << "sslctl: no vision.detection, world.state or robot.commands sample on domain " << options.domain_id
+    err << "sslctl: no vision.detection, world.state, robot.commands or robot.sent sample on domain " << options.domain_id
         << " within " << options.listen_s << " s\n";
     return 1;
   }

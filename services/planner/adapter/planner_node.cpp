@@ -15,10 +15,6 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr auto kMaxWait = 5ms;  // longest wait for world.state, so other inputs and health stay current
-// A world state that arrived during the max_rate hold-off is planned on when the hold-off ends only if it is
-// at most this old then; an older one is dropped for the next (the world model publishes one per camera
-// frame, every 3-4 ms): planning on a 3 ms old state would add those 3 ms to the vision -> command latency.
-constexpr auto kHeldWorldMaxAge = 1ms;
 
 }  // namespace
 
@@ -77,7 +73,6 @@ PlannerNode::PlannerNode(const PlannerServiceConfig& config, time::Clock& wall_c
   last_health_ = now;
   next_health_ = now + health_.period();
   next_tick_ = now;
-  last_tick_ = time::Timestamp::min();
 }
 
 void PlannerNode::reject(std::uint64_t& counter, const std::string& why) {
@@ -134,24 +129,13 @@ bool PlannerNode::world_fresh(time::Timestamp now) const {
 bool PlannerNode::tick_due(time::Timestamp now) const {
   if (!world_fresh(now)) return false;
   if (config_.tick_mode == TickMode::kFixedRate) return now >= next_tick_;
-  if (!new_world_) return false;
-  if (last_tick_ == time::Timestamp::min()) return true;
-  const time::Timestamp hold_off_end = last_tick_ + time::duration_from_seconds(1.0 / config_.max_rate);
-  if (now < hold_off_end) return false;
-  return world_received_ >= hold_off_end || now - world_received_ <= kHeldWorldMaxAge;
+  return new_world_;
 }
 
 std::chrono::nanoseconds PlannerNode::wait_budget() const {
   const time::Timestamp now = clock_->now();
   std::chrono::nanoseconds budget = kMaxWait;
-  if (config_.tick_mode == TickMode::kFixedRate) {
-    budget = std::min(budget, next_tick_ - now);
-  } else if (new_world_ && last_tick_ != time::Timestamp::min()) {
-    // A sample held by the max_rate hold-off that will still be fresh when it ends: wake then, not on the
-    // next sample.
-    const time::Timestamp hold_off_end = last_tick_ + time::duration_from_seconds(1.0 / config_.max_rate);
-    if (world_received_ + kHeldWorldMaxAge >= hold_off_end) budget = std::min(budget, hold_off_end - now);
-  }
+  if (config_.tick_mode == TickMode::kFixedRate) budget = std::min(budget, next_tick_ - now);
   return std::max(budget, std::chrono::nanoseconds(0));
 }
 
@@ -163,7 +147,6 @@ void PlannerNode::tick(time::Timestamp now) {
   ++counters_.ticks;
   ++ticks_in_period_;
   new_world_ = false;
-  last_tick_ = now;
 
   const std::int64_t publish_ns = clock_->now().nanoseconds();
   if (!commands_writer_.write(

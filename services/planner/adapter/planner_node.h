@@ -4,9 +4,10 @@
 // One thread: run() waits on world.state and polls the other readers (no user code on Fast DDS threads,
 // so the core needs no lock).
 //
-// Ticking (tick_mode): `on_world_state` (default) ticks on every new world.state sample, i.e. at the
-// vision rate, but at most max_rate Hz (a sample that arrives sooner is used by the tick that follows the
-// hold-off); `fixed_rate` ticks at tick_rate Hz with the newest world.state. With no world.state for
+// Ticking (tick_mode): `on_world_state` (default) ticks on every new world.state sample as soon as it is
+// taken, i.e. at the vision rate: run() wakes on the sample and ticks at once (samples that arrived during
+// the previous tick are folded into one tick, the newest wins); `fixed_rate` ticks at tick_rate Hz with the
+// newest world.state. With no world.state for
 // stale_world_timeout nothing is ticked or published (robot_link's watchdog stops the robots) and health
 // says WARN "no world state". Until the first referee.state the core sees HALT.
 //
@@ -97,10 +98,9 @@ class PlannerNode {
   PlannerInputs inputs_;
   bool have_world_ = false;
   bool have_referee_ = false;
-  bool new_world_ = false;                  // a world.state arrived since the last tick
+  bool new_world_ = false;                  // a world.state arrived since the last tick (on_world_state)
   idl::common::VisionStamp world_stamp_;    // of inputs_.world, passed through to the outputs
   time::Timestamp world_received_;          // wall clock when the newest world.state was taken
-  time::Timestamp last_tick_;
   time::Timestamp next_tick_;               // fixed_rate
   time::Timestamp next_health_;
   time::Timestamp last_health_;  // the previous report, or the start: its rates are since then

@@ -338,8 +338,10 @@ struct Planner::Impl {
 
 void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, PlannerOutput& out) {
   ++ticks;
+  // The acceleration limits integrate over the real time between ticks (ticks follow the vision frames:
+  // two cameras' frames may come 0.1 ms apart); a stalled loop does not earn more than 50 ms.
   double dt = config.tick_period;
-  if (last_now) dt = std::clamp(time::to_seconds(now - *last_now), 0.001, 0.05);
+  if (last_now) dt = std::clamp(time::to_seconds(now - *last_now), 0.0, 0.05);
   last_now = now;
 
   const wm::RefereeInfo& referee = inputs.referee;

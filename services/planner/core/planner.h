@@ -128,7 +128,7 @@ struct PlannerConfig {
   // skill layer plans from where the last command will have taken the robot by then. world.state is
   // already predicted to now (world_model compensates the vision delay).
   double actuation_latency = 0.015;
-  double tick_period = 1.0 / 100;      // s, nominal (used for acceleration limiting)
+  double tick_period = 1.0 / 100;      // s, the first tick's dt; later ticks use the time since the previous one
   double robot_radius = 0.09;          // m
   double stop_speed = rules::kStopMaxSpeed;  // m/s during STOP (a margin is applied below it)
   double stop_speed_margin = 0.2;      // m/s below stop_speed we aim for

@@ -736,5 +736,31 @@ TEST(PlannerDebugTest, TrajectoriesReportTheirPathAndTrackingError) {
   }
 }
 
+// Ticks follow the vision frames, which may come 0.2 ms apart (two cameras): the acceleration limit holds
+// over that real interval, not over a minimum tick.
+TEST(PlannerTickTimeTest, AccelerationIsLimitedOverTheRealTimeBetweenTicks) {
+  const Side side{};
+  Script script(side);
+  script.default_teams();
+  script.command(RefereeCommand::kStop);  // every robot heads for its STOP position, from rest
+  PlannerConfig config = testing::config_for(side);
+  config.motion = MotionControl::kSimple;
+  Planner planner(config);
+  const PlannerOutput first = planner.step(script.inputs(), testing::at_tick(0));
+  constexpr double kApart = 0.0002;  // s
+  const PlannerOutput second =
+      planner.step(script.inputs(), testing::at_tick(0) + time::duration_from_seconds(kApart));
+  ASSERT_EQ(first.commands.size(), second.commands.size());
+  bool accelerating = false;
+  for (std::size_t i = 0; i < first.commands.size(); ++i) {
+    const RobotCommand& a = first.commands[i];
+    const RobotCommand& b = second.commands[i];
+    const double change = std::hypot(b.forward - a.forward, b.left - a.left);
+    EXPECT_LE(change, config.limits.max_acceleration * kApart + 1e-9) << "robot " << a.id;
+    accelerating = accelerating || change > 0.5 * config.limits.max_acceleration * kApart;
+  }
+  EXPECT_TRUE(accelerating) << "some robot speeds up at the limit (the test would be empty otherwise)";
+}
+
 }  // namespace
 }  // namespace ssl::planner

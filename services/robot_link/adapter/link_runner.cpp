@@ -1,6 +1,5 @@
 #include "services/robot_link/adapter/link_runner.h"
 
-#include "libs/time/periodic_timer.h"
 
 namespace ssl::robot_link {
 namespace {
@@ -65,29 +64,60 @@ InputMailbox::Snapshot InputMailbox::snapshot() const {
 LinkRunner::LinkRunner(const CoreConfig& config, Backend& backend, InputMailbox& mailbox)
     : core_(config), backend_(backend), mailbox_(mailbox) {}
 
-TickResult LinkRunner::tick(time::Timestamp now_mono) {
+SendSchedule::Waiting LinkRunner::waiting(const InputMailbox::Snapshot& inputs) const {
+  using Waiting = SendSchedule::Waiting;
+  if ((inputs.estop_engaged && !sent_estop_) || (inputs.halt && !sent_halt_)) return Waiting::kStop;
+  if (inputs.command_samples != sent_command_samples_ || inputs.halt != sent_halt_ ||
+      inputs.estop_engaged != sent_estop_) {
+    return Waiting::kInput;
+  }
+  return Waiting::kNothing;
+}
+
+std::optional<TickResult> LinkRunner::poll(time::Timestamp now_mono) {
+  if (!schedule_) schedule_.emplace(core_.config().send_period, now_mono);
+  waiting_ = waiting(mailbox_.snapshot());
+  if (now_mono < schedule_->next_send(waiting_)) return std::nullopt;
+  const SendSchedule::Waiting cause = waiting_;
+  TickResult result = send(now_mono);
+  result.cause = cause;
+  waiting_ = SendSchedule::Waiting::kNothing;  // the packet carried everything in the mailbox
+  return result;
+}
+
+time::Timestamp LinkRunner::next_send() const {
+  // Before the first poll() nothing was decided yet: poll at once.
+  return schedule_ ? schedule_->next_send(waiting_) : time::Timestamp::min();
+}
+
+TickResult LinkRunner::send(time::Timestamp now_mono) {
   TickResult result;
   result.now_mono = now_mono;
+  result.cause = SendSchedule::Waiting::kNothing;
   result.inputs = mailbox_.snapshot();
+  // Feedback first, so that nothing but the send itself lies between the decision and the packet leaving.
+  result.feedback = backend_.poll_feedback();
   result.output = core_.step({.latest = result.inputs.latest,
                               .halt = result.inputs.halt,
                               .estop_engaged = result.inputs.estop_engaged},
                              now_mono);
   if (!result.output.commands.empty()) result.sent = backend_.send(result.output.commands);
-  result.feedback = backend_.poll_feedback();
+  if (schedule_) schedule_->on_sent(now_mono);
+  sent_command_samples_ = result.inputs.command_samples;
+  sent_halt_ = result.inputs.halt;
+  sent_estop_ = result.inputs.estop_engaged;
   return result;
 }
 
 void LinkRunner::run(time::Clock& clock, const std::function<bool()>& keep_running,
-                     const std::function<void(time::Timestamp)>& before_tick,
-                     const std::function<void(const TickResult&)>& after_tick) {
-  time::PeriodicTimer timer(clock, core_.config().send_period, clock.now());
-  while (keep_running() && timer.wait_next()) {
+                     const std::function<void(time::Timestamp)>& take_inputs,
+                     const std::function<bool(time::Timestamp)>& wait_until,
+                     const std::function<void(const TickResult&)>& after_send) {
+  while (keep_running() && !clock.stopped()) {
     const time::Timestamp now = clock.now();
-    if (before_tick) before_tick(now);
-    const TickResult result = tick(now);
-    missed_ticks_ = timer.missed_ticks();
-    if (after_tick) after_tick(result);
+    if (take_inputs) take_inputs(now);
+    if (std::optional<TickResult> result = poll(now); result && after_send) after_send(*result);
+    if (!wait_until(next_send())) break;
   }
 }
 

@@ -1,20 +1,25 @@
-// The fixed-rate loop of robot_link, without DDS: InputMailbox collects inputs (polled DDS samples,
-// e-stop devices; thread-safe) and LinkRunner sends, on every tick of a drift-free PeriodicTimer at the
-// configured rate, what the core decides, whatever the timing of incoming commands; then it collects the
-// backend's feedback. Time comes from an injected ssl::time::Clock (host MONOTONIC in production, a
-// SimulatedClock in tests); receive times given to the mailbox must come from the same clock.
+// The send loop of robot_link, without DDS: InputMailbox collects inputs (polled DDS samples, e-stop
+// devices; thread-safe) and LinkRunner sends what the core decides whenever the SendSchedule says a packet
+// is due: a new robot.commands sample at once while the radio's token bucket allows (else at its next
+// token), a new safety stop at once, and otherwise the last commands again as a heartbeat; then it
+// collects the backend's feedback. Between packets the loop blocks in the given wait (robot_link waits on
+// its robot.commands reader), never spinning. Time comes from an injected ssl::time::Clock (host MONOTONIC
+// in production, a SimulatedClock in tests); receive times given to the mailbox must come from the same
+// clock.
 //
 //   InputMailbox mailbox;
 //   LinkRunner runner(core_config, *backend, mailbox);
 //   runner.run(clock, [&] { return !shutdown.requested(); },
-//              [&](time::Timestamp now) { mailbox.on_commands(take_new_commands(), now); },  // before
-//              [&](const TickResult& r) { publish(r.feedback); });                          // after
+//              [&](time::Timestamp now) { mailbox.on_commands(take_new_commands(), now); },  // inputs
+//              [&](time::Timestamp deadline) { return wait_for_commands_until(deadline); },  // wait
+//              [&](const TickResult& r) { publish(r.feedback); });                          // each packet
 //   runner.send_final_stop(clock.now());                    // on shutdown: every robot stops
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,6 +27,7 @@
 #include "libs/time/clock.h"
 #include "services/robot_link/backend/backend.h"
 #include "services/robot_link/core/robot_link_core.h"
+#include "services/robot_link/core/send_schedule.h"
 
 namespace ssl::robot_link {
 
@@ -61,11 +67,13 @@ class InputMailbox {
   std::uint64_t wrong_team_ = 0;
 };
 
+/// One packet sent.
 struct TickResult {
-  time::Timestamp now_mono;
+  time::Timestamp now_mono;              // when it was decided and sent
+  SendSchedule::Waiting cause;           // kStop, kInput (something new) or kNothing (the heartbeat)
   TickOutput output;
   Status sent;                           // the backend's send result
-  std::vector<FeedbackReport> feedback;  // arrived since the last tick
+  std::vector<FeedbackReport> feedback;  // arrived since the last packet
   InputMailbox::Snapshot inputs;         // what the core saw
 };
 
@@ -74,30 +82,46 @@ class LinkRunner {
   /// `backend` and `mailbox` must outlive the runner. @throws std::invalid_argument on a bad config.
   LinkRunner(const CoreConfig& config, Backend& backend, InputMailbox& mailbox);
 
-  /// One tick at `now_mono`: snapshot the mailbox, step the core, send, collect feedback.
-  TickResult tick(time::Timestamp now_mono);
+  /// At `now_mono`: looks at the mailbox and sends if a packet is due (SendSchedule, at the config's
+  /// send period); the first call always sends. nullopt when nothing was due.
+  std::optional<TickResult> poll(time::Timestamp now_mono);
 
-  /// Ticks at the config's send period on `clock` until `keep_running()` is false or the clock stops.
-  /// `before_tick(now)` runs first on every tick (feed the mailbox with what arrived), `after_tick` sees
-  /// every tick's result (publish feedback, health); either may be empty. Missed deadlines are skipped,
-  /// never sent in a burst.
+  /// When poll() next sends if no input arrives before: the loop's wake-up deadline.
+  time::Timestamp next_send() const;
+
+  /// Sends one packet at `now_mono` whatever the schedule: snapshot the mailbox, collect feedback, step the
+  /// core, send.
+  TickResult send(time::Timestamp now_mono);
+
+  /// Until `keep_running()` is false or `wait_until` returns false: `take_inputs(now)` feeds the mailbox,
+  /// poll() sends what is due and `after_send` sees each packet's result; then `wait_until(deadline)`
+  /// blocks until next_send() on `clock` or until an input may have arrived (returning early is fine: the
+  /// loop looks again). `take_inputs` and `after_send` may be empty.
   void run(time::Clock& clock, const std::function<bool()>& keep_running,
-           const std::function<void(time::Timestamp)>& before_tick,
-           const std::function<void(const TickResult&)>& after_tick);
+           const std::function<void(time::Timestamp)>& take_inputs,
+           const std::function<bool(time::Timestamp)>& wait_until,
+           const std::function<void(const TickResult&)>& after_send);
 
-  /// Sends one tick in which every known robot gets a stop (used on shutdown).
+  /// Sends one packet in which every known robot gets a stop (used on shutdown).
   Status send_final_stop(time::Timestamp now_mono);
 
   const RobotLinkCore& core() const noexcept { return core_; }
   /// See RobotLinkCore::reconfigure; the send period stays as started.
   Status reconfigure(const CoreConfig& config) { return core_.reconfigure(config); }
-  std::uint64_t missed_ticks() const noexcept { return missed_ticks_; }
 
  private:
+  /// What waits to be sent, comparing the mailbox with the last packet.
+  SendSchedule::Waiting waiting(const InputMailbox::Snapshot& inputs) const;
+
   RobotLinkCore core_;
   Backend& backend_;
   InputMailbox& mailbox_;
-  std::uint64_t missed_ticks_ = 0;
+  std::optional<SendSchedule> schedule_;  // from the first poll()
+  SendSchedule::Waiting waiting_ = SendSchedule::Waiting::kNothing;  // as of the last poll()
+  // What the last packet carried.
+  std::uint64_t sent_command_samples_ = 0;
+  bool sent_halt_ = false;
+  bool sent_estop_ = false;
 };
 
 /// Decides which feedback to publish: a robot's report goes out when it differs from the last one

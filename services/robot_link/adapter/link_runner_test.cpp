@@ -1,12 +1,12 @@
-// The fixed-rate loop on a simulated clock: commands arriving with jitter still leave at exactly the
-// configured rate, the watchdog stops a robot whose planner went silent, shutdown sends stops; and the
-// feedback throttle publishes changes at once and heartbeats otherwise.
+// The send loop on a simulated clock: it sleeps between heartbeats (every period when nothing arrives),
+// new commands leave at once within the radio's rate, stops at once; the watchdog stops a robot whose
+// planner went silent, shutdown sends stops; and the feedback throttle publishes changes at once and
+// heartbeats otherwise.
 #include "services/robot_link/adapter/link_runner.h"
 
 #include <gtest/gtest.h>
 
 #include <condition_variable>
-#include <random>
 #include <thread>
 
 namespace ssl::robot_link {
@@ -22,6 +22,7 @@ class FakeBackend final : public Backend {
   Status send(std::span<const OutgoingCommand> commands) override {
     std::lock_guard lock(mutex_);
     sends_.push_back({clock_.now(), {commands.begin(), commands.end()}});
+    sent_.notify_all();
     return {};
   }
   std::vector<FeedbackReport> poll_feedback() override { return {}; }
@@ -37,10 +38,16 @@ class FakeBackend final : public Backend {
     std::lock_guard lock(mutex_);
     return sends_;
   }
+  /// Waits (real time, bounded) until `count` packets were sent.
+  bool wait_for_sends(std::size_t count) const {
+    std::unique_lock lock(mutex_);
+    return sent_.wait_for(lock, std::chrono::seconds(5), [&] { return sends_.size() >= count; });
+  }
 
  private:
   time::Clock& clock_;
   mutable std::mutex mutex_;
+  mutable std::condition_variable sent_;
   std::vector<Send> sends_;
 };
 
@@ -53,49 +60,26 @@ CoreConfig test_config() {
   return config;
 }
 
-TEST(RobotLinkRunnerTest, SendsAtAFixedRateWhateverTheJitterOfIncomingCommandsAndStopsWhenTheyStop) {
+TEST(RobotLinkRunnerTest, SleepsBetweenHeartbeatsEveryPeriodAndTheWatchdogStopsASilentPlanner) {
   const time::Timestamp start = time::Timestamp::from_milliseconds(5'000'000);
   time::SimulatedClock clock(start);
   FakeBackend backend(clock);
   InputMailbox mailbox;
   LinkRunner runner(test_config(), backend, mailbox);
+  const RobotCommand command{.id = 2, .forward = 0.5};
+  mailbox.on_commands(std::span(&command, 1), start);  // the planner's last sample, then silence
 
-  std::mutex mutex;
-  std::condition_variable ticked;
-  int ticks = 0;
   std::thread worker([&] {
     runner.run(
-        clock, [] { return true; }, {},
-        [&](const TickResult&) {
-          std::lock_guard lock(mutex);
-          ++ticks;
-          ticked.notify_all();
-        });
+        clock, [] { return true; }, {}, [&](time::Timestamp deadline) { return clock.sleep_until(deadline); }, {});
   });
-  const auto wait_for_ticks = [&](int count) {
-    std::unique_lock lock(mutex);
-    return ticked.wait_for(lock, std::chrono::seconds(5), [&] { return ticks >= count; });
-  };
-  ASSERT_TRUE(wait_for_ticks(1));
-
-  // Planner samples at seeded, jittered times (3..45 ms apart) for 1.5 s, then silence.
-  std::mt19937 random(99);
-  std::uniform_int_distribution<int> gap(3, 45);
-  std::vector<int> arrivals_ms;
-  for (int t = 2; t < 1500; t += gap(random)) arrivals_ms.push_back(t);
-  const int last_arrival_ms = arrivals_ms.back();
-
-  std::size_t next = 0;
-  for (int ms = 1; ms <= 2000; ++ms) {
-    ASSERT_TRUE(clock.wait_for_sleepers(1, std::chrono::seconds(5)));
+  for (int ms = 1; ms <= 200; ++ms) {
+    // The loop blocks on the clock between packets (a spinning loop would never be a sleeper).
+    ASSERT_TRUE(clock.wait_for_sleepers(1, std::chrono::seconds(5))) << "at " << ms << " ms";
     clock.advance(milliseconds(1));
-    while (next < arrivals_ms.size() && arrivals_ms[next] <= ms) {
-      const RobotCommand command{.id = 2, .forward = 0.001 * static_cast<double>(next + 1)};
-      mailbox.on_commands(std::span(&command, 1), clock.now());
-      ++next;
-    }
+    // The packet due now has left before the clock moves on.
     if (ms % 10 == 0) {
-      ASSERT_TRUE(wait_for_ticks(ms / 10 + 1)) << "tick at " << ms << " ms";
+      ASSERT_TRUE(backend.wait_for_sends(static_cast<std::size_t>(ms / 10 + 1))) << ms;
     }
   }
   ASSERT_TRUE(clock.wait_for_sleepers(1, std::chrono::seconds(5)));
@@ -103,32 +87,96 @@ TEST(RobotLinkRunnerTest, SendsAtAFixedRateWhateverTheJitterOfIncomingCommandsAn
   worker.join();
 
   const auto sends = backend.sends();
-  // One send per 10 ms, on the period grid: nothing bunched after bursts, nothing skipped in gaps.
-  ASSERT_GE(sends.size(), 200u);
-  for (std::size_t i = 1; i < sends.size(); ++i) {
-    EXPECT_EQ(sends[i].at - sends[i - 1].at, milliseconds(10)) << "send " << i;
-  }
-  bool stopped = false;
-  time::Timestamp first_stop;
-  for (const auto& send : sends) {
-    ASSERT_EQ(send.commands.size(), 1u);
-    const OutgoingCommand& out = send.commands[0];
-    const auto since_start = std::chrono::duration_cast<milliseconds>(send.at - start).count();
-    if (since_start <= last_arrival_ms + 100) {
-      EXPECT_EQ(out.stop, StopReason::kNone) << "at " << since_start << " ms";
-      EXPECT_GT(out.command.forward, 0) << "at " << since_start << " ms";
+  ASSERT_EQ(sends.size(), 21u) << "the command at once, then a heartbeat every 10 ms";
+  for (std::size_t i = 0; i < sends.size(); ++i) {
+    EXPECT_EQ(sends[i].at, start + milliseconds(10 * static_cast<std::int64_t>(i))) << "packet " << i;
+    ASSERT_EQ(sends[i].commands.size(), 1u);
+    const OutgoingCommand& out = sends[i].commands[0];
+    if (sends[i].at - start <= milliseconds(100)) {  // exactly 100 ms old is still fresh
+      EXPECT_EQ(out.stop, StopReason::kNone) << "packet " << i;
+      EXPECT_DOUBLE_EQ(out.command.forward, 0.5);
     } else {
-      EXPECT_EQ(out.stop, StopReason::kStale) << "at " << since_start << " ms";
+      EXPECT_EQ(out.stop, StopReason::kStale) << "packet " << i;
       EXPECT_TRUE(is_stop(out.command));
-      if (!stopped) first_stop = send.at;
-      stopped = true;
     }
   }
+}
+
+TEST(RobotLinkRunnerTest, NewCommandsGoOutAtOnceWithinTheRadiosRateAndAtMostOnePeriodLate) {
+  const time::Timestamp start = time::Timestamp::from_milliseconds(5'000'000);
+  time::SimulatedClock clock(start);
+  FakeBackend backend(clock);
+  InputMailbox mailbox;
+  LinkRunner runner(test_config(), backend, mailbox);
+  const auto arrive = [&](double forward) {
+    const RobotCommand command{.id = 2, .forward = forward};
+    mailbox.on_commands(std::span(&command, 1), clock.now());
+  };
+  ASSERT_TRUE(runner.poll(clock.now()));  // the first poll sends (startup stops)
+  EXPECT_EQ(runner.next_send(), start + milliseconds(10)) << "the heartbeat";
+
+  // After idle: out in the same nanosecond, not at the next heartbeat.
+  clock.advance(std::chrono::microseconds(3'333));
+  arrive(0.1);
+  EXPECT_EQ(runner.next_send(), start + milliseconds(10)) << "nothing polled the mailbox yet";
+  const auto sent = runner.poll(clock.now());
+  ASSERT_TRUE(sent);
+  EXPECT_EQ(sent->cause, SendSchedule::Waiting::kInput);
+  EXPECT_EQ(backend.sends().back().at, clock.now());
+  EXPECT_DOUBLE_EQ(backend.sends().back().commands[0].command.forward, 0.1);
+
+  // A flood (every 0.5 ms): the bucket is empty now; the newest command leaves at each token, exactly.
+  clock.advance(std::chrono::microseconds(500));
+  arrive(0.2);
+  EXPECT_FALSE(runner.poll(clock.now()));
+  const time::Timestamp token = runner.next_send();
+  EXPECT_EQ(token, start + milliseconds(10)) << "the 100 Hz bucket's next token";
+  while (clock.now() + std::chrono::microseconds(500) < token) {
+    clock.advance(std::chrono::microseconds(500));
+    arrive(0.3);
+    EXPECT_FALSE(runner.poll(clock.now()));
+  }
+  clock.set(token - time::Duration(1));
+  EXPECT_FALSE(runner.poll(clock.now()));
+  clock.set(token);
+  ASSERT_TRUE(runner.poll(clock.now()));
+  EXPECT_DOUBLE_EQ(backend.sends().back().commands[0].command.forward, 0.3) << "the newest";
+  // (The first poll had no robot to command: nothing reached the backend.)
+  EXPECT_EQ(backend.sends().size(), 2u) << "the input at 3.3 ms, then the flood once: never above the rate";
+  EXPECT_EQ(runner.next_send(), token + milliseconds(20)) << "nothing new: the heartbeat once the bucket is full";
+}
+
+TEST(RobotLinkRunnerTest, EstopAndHaltGoOutAtOnceEvenWhenTheRateIsUsedUp) {
+  time::SimulatedClock clock(time::Timestamp::from_milliseconds(1000));
+  FakeBackend backend(clock);
+  InputMailbox mailbox;
+  LinkRunner runner(test_config(), backend, mailbox);
+  const RobotCommand command{.id = 4, .forward = 1};
+  mailbox.on_commands(std::span(&command, 1), clock.now());
+  ASSERT_TRUE(runner.poll(clock.now()));
+  clock.advance(std::chrono::microseconds(100));
+  mailbox.on_commands(std::span(&command, 1), clock.now());
+  ASSERT_TRUE(runner.poll(clock.now()));  // the burst's second token: the bucket is empty now
+
+  clock.advance(std::chrono::microseconds(100));
+  mailbox.on_estop(true, "console", "test");
+  auto stopped = runner.poll(clock.now());
   ASSERT_TRUE(stopped);
-  const auto silence = first_stop - (start + milliseconds(last_arrival_ms));
-  EXPECT_GT(silence, milliseconds(100));
-  EXPECT_LE(silence, milliseconds(110)) << "watchdog + at most one send period";
-  EXPECT_EQ(runner.missed_ticks(), 0u);
+  EXPECT_EQ(stopped->cause, SendSchedule::Waiting::kStop);
+  EXPECT_EQ(stopped->output.commands[0].stop, StopReason::kEstop);
+
+  clock.advance(std::chrono::microseconds(100));
+  mailbox.on_estop(false, "console", "clear");
+  mailbox.on_referee(true);  // e-stop released and HALT in one go: still a new stop
+  auto halted = runner.poll(clock.now());
+  ASSERT_TRUE(halted);
+  EXPECT_EQ(halted->cause, SendSchedule::Waiting::kStop);
+  EXPECT_EQ(halted->output.commands[0].stop, StopReason::kHalt);
+
+  clock.advance(std::chrono::microseconds(100));
+  mailbox.on_referee(false);  // lifting HALT is no stop: it waits for a token
+  EXPECT_FALSE(runner.poll(clock.now()));
+  EXPECT_GT(runner.next_send(), clock.now());
 }
 
 TEST(RobotLinkRunnerTest, FinalStopStopsEveryKnownRobotAndEstopLatchesInTheMailbox) {
@@ -138,7 +186,7 @@ TEST(RobotLinkRunnerTest, FinalStopStopsEveryKnownRobotAndEstopLatchesInTheMailb
   LinkRunner runner(test_config(), backend, mailbox);
   const RobotCommand commands[] = {{.id = 1, .forward = 1}, {.id = 6, .left = 1}};
   mailbox.on_commands(commands, clock.now());
-  TickResult running = runner.tick(clock.now());
+  TickResult running = runner.send(clock.now());
   ASSERT_EQ(running.output.commands.size(), 2u);
   EXPECT_EQ(running.output.commands[0].stop, StopReason::kNone);
 
@@ -150,10 +198,10 @@ TEST(RobotLinkRunnerTest, FinalStopStopsEveryKnownRobotAndEstopLatchesInTheMailb
   mailbox.on_estop(true, "console", "test");
   mailbox.on_estop_writer_lost();
   mailbox.on_commands(commands, clock.now());
-  EXPECT_EQ(runner.tick(clock.now()).output.commands[0].stop, StopReason::kEstop);
+  EXPECT_EQ(runner.send(clock.now()).output.commands[0].stop, StopReason::kEstop);
   EXPECT_EQ(mailbox.snapshot().estop_writers_lost_while_engaged, 1u);
   mailbox.on_estop(false, "console", "clear");
-  EXPECT_EQ(runner.tick(clock.now()).output.commands[0].stop, StopReason::kNone);
+  EXPECT_EQ(runner.send(clock.now()).output.commands[0].stop, StopReason::kNone);
 
   mailbox.on_wrong_team();
   EXPECT_EQ(mailbox.snapshot().wrong_team, 1u);

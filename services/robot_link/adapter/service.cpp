@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "libs/common/percentile.h"
 #include "libs/dds/health.h"
 #include "libs/dds/participant.h"
 #include "libs/service/parameters.h"
@@ -35,8 +36,11 @@ class HealthTracker {
   HealthTracker(std::string backend, time::Timestamp start_mono)
       : backend_(std::move(backend)), last_mono_(start_mono) {}
 
+  /// `out_latencies`: s from robot.commands reception to the packet that first carried the sample, this
+  /// period (reordered).
   dds::HealthReport report(const TickResult& tick, const RobotLinkCore& core, const BackendCounters& backend,
-                           std::uint64_t missed_ticks, std::uint64_t feedback_published,
+                           std::vector<double>& out_latencies, std::uint64_t heartbeats_sent,
+                           std::uint64_t robot_sent_write_failures, std::uint64_t feedback_published,
                            std::uint64_t feedback_write_failures, const SerialEstop* device,
                            const std::vector<std::pair<std::uint32_t, double>>& link_quality,
                            const dds::ReaderCounters& commands_reader) {
@@ -64,13 +68,16 @@ class HealthTracker {
                                                                             : dds::HealthLevel::kOk;
     report.status = status;
     report.rate_hz = rate;
-    report.errors = backend.send_errors + feedback_write_failures;
+    report.latency_p50 = percentile(out_latencies, 0.5);
+    report.latency_p99 = percentile(out_latencies, 0.99);
+    report.errors = backend.send_errors + feedback_write_failures + robot_sent_write_failures;
     report.dropped = in.invalid_ids + in.wrong_team + backend.feedback_errors;
     report.counters = {
         {"commands_received", in.command_samples},
         {"robot_commands_received", in.robot_commands},
         {"commands_sent", c.commands_sent},
         {"packets_sent", backend.packets_sent},
+        {"heartbeats_sent", heartbeats_sent},
         {"stops_sent", c.stops_sent},
         {"stale_stopped_robots", c.stale_robots},
         {"stale_events", c.stale_events},
@@ -86,7 +93,7 @@ class HealthTracker {
         {"invalid_robot_ids", in.invalid_ids},
         {"wrong_team_samples", in.wrong_team},
         {"send_errors", backend.send_errors},
-        {"missed_ticks", missed_ticks},
+        {"robot_sent_write_failures", robot_sent_write_failures},
         {"feedback_received", backend.feedback_received},
         {"feedback_errors", backend.feedback_errors},
         {"feedback_published", feedback_published},
@@ -116,8 +123,8 @@ class HealthTracker {
 };
 
 /// When a polled sample arrived, on the monotonic clock: its DDS reception time (host wall clock) mapped
-/// onto `now_mono`. The age is bounded to [0, 2 send periods] (a sample waits at most one tick in the
-/// reader), so a wall-clock step cannot make a command look older or newer than that.
+/// onto `now_mono`. The age is bounded to [0, 2 send periods] (the loop takes a sample when it arrives, or
+/// within a period at most), so a wall-clock step cannot make a command look older or newer than that.
 time::Timestamp received_mono(time::Timestamp now_mono, std::int64_t now_unix_ns,
                               std::int64_t reception_unix_ns, time::Duration send_period) {
   const time::Duration age =
@@ -171,6 +178,8 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
   if (!estop_reader) return estop_reader.error();
   auto feedback_writer = participant->make_writer(dds::topics::kRobotFeedback, team);
   if (!feedback_writer) return feedback_writer.error();
+  auto sent_writer = participant->make_writer(dds::topics::kRobotSent, team);
+  if (!sent_writer) return sent_writer.error();
   // The local e-stop inputs publish on system.estop through a participant of their own: Fast DDS does not
   // keep a writer's liveliness asserted towards readers of its own participant, so our reader would
   // see our own writer "lost" a second after each write. They address our team only: our button never
@@ -199,8 +208,10 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
                                                                   options.saved_parameters);
   if (!parameters) return parameters.error();
 
-  logger->info("{}: robot.commands on domain {} -> {} at {} Hz, watchdog {} ms", instance, options.domain_id,
-               (*backend)->description(), config.send_rate, std::lround(config.command_timeout * 1000));
+  logger->info("{}: robot.commands on domain {} -> {}: new commands at once, at most {} Hz (heartbeat every "
+               "{} ms), watchdog {} ms",
+               instance, options.domain_id, (*backend)->description(), config.send_rate,
+               std::lround(1000 / config.send_rate), std::lround(config.command_timeout * 1000));
 
   // A local e-stop input: latch here at once, and tell the rest of our team's stack (and the console)
   // through system.estop.
@@ -222,14 +233,22 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
   time::Timestamp next_health = clock.now() + health->period();
   std::uint64_t feedback_published = 0;
   std::uint64_t feedback_write_failures = 0;
+  // The newest robot.commands sample taken, and the one the last packet carried (robot.sent).
+  idl::robot::CommandsSent newest;
+  newest.team(team_to_idl(team));
+  std::int64_t newest_reception_unix_ns = 0;
+  std::uint64_t last_sent_sequence = 0;
+  std::vector<double> out_latencies;  // s, this health period
+  std::uint64_t heartbeats_sent = 0;
+  std::uint64_t robot_sent_write_failures = 0;
   std::int32_t alive_estop_writers = 0;
   bool was_engaged = false;
   bool was_halted = false;
   std::string last_backend_error;
   std::optional<time::Timestamp> last_send_error_log_mono;
 
-  // Everything that arrived since the last tick, into the mailbox, just before the core runs.
-  const auto before_tick = [&](time::Timestamp now_mono) {
+  // Everything that arrived since the loop last looked, into the mailbox.
+  const auto take_inputs = [&](time::Timestamp now_mono) {
     if (std::optional<RobotLinkConfig> next = (*parameters)->poll()) {
       if (Status applied = runner.reconfigure(core_config(*next)); !applied) {
         logger->error("run-time parameters: {}", applied.error().message);
@@ -243,6 +262,9 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
         const std::vector<RobotCommand> commands = commands_from_idl(sample->data);
         mailbox.on_commands(commands, received_mono(now_mono, now_unix_ns, sample->reception_unix_ns,
                                                     runner.core().config().send_period));
+        newest.sequence_number(sample->data.sequence_number());
+        newest.stamp(sample->data.stamp());
+        newest_reception_unix_ns = sample->reception_unix_ns;
       } else {
         mailbox.on_wrong_team();
       }
@@ -282,7 +304,30 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
     }
   };
 
-  const auto after_tick = [&](const TickResult& tick) {
+  // Between packets: until the next one is due, woken at once by a robot.commands sample. At most one send
+  // period, so that referee.state, system.estop, the local e-stop inputs and shutdown are looked at as
+  // often as before.
+  const time::Duration send_period = runner.core().config().send_period;
+  const auto wait_until = [&](time::Timestamp deadline) {
+    commands_reader->wait_for_data(std::clamp(deadline - clock.now(), time::Duration::zero(), send_period));
+    return true;
+  };
+
+  const auto after_send = [&](const TickResult& tick) {
+    // The end of the vision -> radio path: which sample this packet carried and when it left (the clock is
+    // read first: the send has just returned).
+    const std::int64_t sent_unix_ns = wall_clock_unix_ns();
+    if (!tick.output.commands.empty() && tick.sent) {
+      newest.sent_unix_ns(sent_unix_ns);
+      newest.resend(newest.sequence_number() == last_sent_sequence);
+      if (!sent_writer->write(newest)) ++robot_sent_write_failures;
+      if (!newest.resend() && newest_reception_unix_ns > 0) {
+        out_latencies.push_back(static_cast<double>(sent_unix_ns - newest_reception_unix_ns) * 1e-9);
+      }
+      last_sent_sequence = newest.sequence_number();
+      if (tick.cause == SendSchedule::Waiting::kNothing) ++heartbeats_sent;
+    }
+
     if (tick.inputs.estop_engaged != was_engaged) {
       if (tick.inputs.estop_engaged) {
         logger->warn("E-STOP ENGAGED by {}: {}", tick.inputs.estop_source, tick.inputs.estop_reason);
@@ -317,18 +362,19 @@ Status run_robot_link(const ServiceOptions& options, ShutdownSignal& shutdown,
 
     if (tick.now_mono >= next_health) {
       const dds::HealthReport report = health_tracker.report(
-          tick, runner.core(), (*backend)->counters(), runner.missed_ticks(), feedback_published,
-          feedback_write_failures, estop_device ? &*estop_device : nullptr, throttle.link_quality(),
+          tick, runner.core(), (*backend)->counters(), out_latencies, heartbeats_sent, robot_sent_write_failures,
+          feedback_published, feedback_write_failures, estop_device ? &*estop_device : nullptr, throttle.link_quality(),
           commands_reader->counters());
       if (Status published = health->publish(report); !published)
         logger->debug("{}", published.error().message);
+      out_latencies.clear();
       next_health = tick.now_mono + health->period();
       logger->debug("{}", report.status);
     }
   };
 
   runner.run(
-      clock, [&] { return !shutdown.requested(); }, before_tick, after_tick);
+      clock, [&] { return !shutdown.requested(); }, take_inputs, wait_until, after_send);
 
   // Leave every robot standing: a simulator keeps executing the last command it got.
   for (int i = 0; i < 3; ++i) (void)runner.send_final_stop(clock.now());

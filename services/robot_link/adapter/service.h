@@ -1,6 +1,7 @@
 // robot_link as a running service: wires the DDS topics (robot.commands of the team, referee.state,
-// system.estop for the team in; robot.feedback of the team, system.health out, and system.estop for the
-// team out when a local e-stop input is configured) to the fixed-rate LinkRunner and the configured backend, until shutdown.
+// system.estop for the team in; robot.sent and robot.feedback of the team, system.health out, and
+// system.estop for the team out when a local e-stop input is configured) to the LinkRunner send loop and
+// the configured backend, until shutdown.
 // Every topic of the process is created here (one place). On shutdown every robot is sent a stop.
 //
 //   ssl::Status ran = run_robot_link({.config = config, .team = team, .domain_id = 3}, shutdown, logger);

@@ -1,5 +1,6 @@
-// ssl::robot_link_core: what robot_link sends to each robot on each tick, as a pure function of its
-// inputs. No DDS, sockets or threads; time is an argument (host MONOTONIC clock).
+// ssl::robot_link_core: what robot_link sends to each robot in each packet (a "tick": one step per packet,
+// whenever SendSchedule says one is due), as a pure function of its inputs. No DDS, sockets or threads;
+// time is an argument (host MONOTONIC clock).
 //
 // Contract, checked in this order for every robot on every tick (the first that applies wins):
 //   1. E-stop engaged (system.estop, latched by EstopLatch): every robot gets a stop.
@@ -22,7 +23,7 @@
 //   EstopLatch estop;
 //   estop.on_sample(true, "console", "robot on fire");    // on every system.estop sample
 //   TickOutput out = core.step({.latest = table.latest(), .halt = halt, .estop_engaged = estop.engaged()},
-//                              now_mono);                  // at the fixed send rate
+//                              now_mono);                  // per packet (SendSchedule)
 //   backend.send(out.commands);
 #pragma once
 
@@ -56,7 +57,7 @@ struct RobotLimits {
 struct CoreConfig {
   RobotLimits limits;
   time::Duration command_timeout = std::chrono::milliseconds(100);  // watchdog: older commands stop
-  time::Duration send_period = std::chrono::milliseconds(10);       // nominal tick period (100 Hz)
+  time::Duration send_period = std::chrono::milliseconds(10);       // the radio's period (100 Hz): SendSchedule
   time::Duration startup_stop = std::chrono::milliseconds(500);     // stop uncommanded ids this long
 };
 
