@@ -343,18 +343,23 @@ TEST(PlannerProcess, CommandLine) {
   EXPECT_NE(graph.find("digraph"), std::string::npos) << graph;
 }
 
+// The node in-process with the deployed planner config, on `clock`.
+Result<PlannerNode> deployed_node(dds::Participant& participant, time::Clock& clock) {
+  auto path = find_deploy_file("config/planner.yaml");
+  if (!path) return path.error();
+  auto config = load_planner_config(*path, {});
+  if (!config) return config.error();
+  return PlannerNode::create(participant, *config, clock);
+}
+
 // The node in-process (domain 232) with a simulated clock: inputs with NaN are rejected and counted, and
 // nothing computed from them is published; a good world state then ticks.
 TEST(PlannerNodeInProcess, NonFiniteInputsAreRejectedAndCounted) {
   constexpr int kDomain = 232;
   auto participant = dds::Participant::create({.domain_id = kDomain, .name = "planner_node_test"});
   ASSERT_TRUE(participant) << participant.error().message;
-  auto path = find_deploy_file("config/planner.yaml");
-  ASSERT_TRUE(path) << path.error().message;
-  auto config = load_planner_config(*path, {});
-  ASSERT_TRUE(config) << config.error().message;
   time::SimulatedClock clock(time::Timestamp::from_seconds(1.7e9));
-  auto node = PlannerNode::create(*participant, *config, clock);
+  auto node = deployed_node(*participant, clock);
   ASSERT_TRUE(node) << node.error().message;
   auto world_writer = participant->make_writer(dds::topics::kWorldState, TeamColor::kBlue);
   auto referee_writer = participant->make_writer(dds::topics::kRefereeState);
@@ -420,12 +425,8 @@ TEST(PlannerNodeInProcess, EveryWorldStateIsPlannedOnAtOnce) {
   constexpr int kDomain = 171;
   auto participant = dds::Participant::create({.domain_id = kDomain, .name = "planner_node_at_once_test"});
   ASSERT_TRUE(participant) << participant.error().message;
-  auto path = find_deploy_file("config/planner.yaml");
-  ASSERT_TRUE(path) << path.error().message;
-  auto config = load_planner_config(*path, {});
-  ASSERT_TRUE(config) << config.error().message;
   time::SimulatedClock clock(time::Timestamp::from_seconds(1.7e9));
-  auto node = PlannerNode::create(*participant, *config, clock);
+  auto node = deployed_node(*participant, clock);
   ASSERT_TRUE(node) << node.error().message;
   auto world_writer = participant->make_writer(dds::topics::kWorldState, TeamColor::kBlue);
   auto commands = participant->make_reader(dds::topics::kRobotCommands, TeamColor::kBlue);
