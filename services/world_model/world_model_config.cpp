@@ -46,7 +46,12 @@ Fields<RobotFilterParams> robot_fields() {
           .doc("sent -> executed by the robot"),
       field("velocity_turns_with_robot", &RobotFilterParams::velocity_turns_with_robot)
           .doc("without a command, also try a velocity that turns with the robot"),
-      field("motion_model_memory", &RobotFilterParams::motion_model_memory).range(0, 0.9999),
+      field("motion_model_memory", &RobotFilterParams::motion_model_memory).range(0, 0.9999)
+          .doc("per comparison of the two uncommanded models: weight of the past"),
+      field("motion_model_horizon", &RobotFilterParams::motion_model_horizon).unit("s").range(0.01, 1)
+          .doc("the two uncommanded models are compared over this long"),
+      field("angular_jerk_stddev", &RobotFilterParams::angular_jerk_stddev).unit("rad/s^3/sqrt(Hz)")
+          .range(0, 1000).doc("heading track's white angular jerk: uncommanded angular acceleration (0: none)"),
       field("contact_acceleration_stddev", &RobotFilterParams::contact_acceleration_stddev).unit("m/s^2")
           .range(0.01, 100),
       field("contact_angular_acceleration_stddev", &RobotFilterParams::contact_angular_acceleration_stddev)
@@ -94,6 +99,24 @@ Fields<CameraAlignmentParams> camera_alignment_fields() {
   };
 }
 
+Fields<DetectionNoiseParams> detection_noise_fields() {
+  return {
+      field("estimate", &DetectionNoiseParams::estimate)
+          .doc("estimate each camera's robot detection noise from its detections (false: robot.*_stddev)"),
+      field("min_samples", &DetectionNoiseParams::min_samples).range(1, 1000000)
+          .doc("residuals a camera needs before its estimate is used"),
+      field("memory", &DetectionNoiseParams::memory).range(0.5, 0.999999)
+          .doc("per residual: weight of the past"),
+      field("max_span", &DetectionNoiseParams::max_span).unit("s").range(0.005, 1)
+          .doc("three detections of one robot by one camera within this make a residual"),
+      field("clip_sigmas", &DetectionNoiseParams::clip_sigmas).range(1, 100)
+          .doc("a residual counts at most this many current sigmas (collisions are not noise)"),
+      field("min_factor", &DetectionNoiseParams::min_factor).range(0.01, 1)
+          .doc("the estimate stays at least this times the configured noise ..."),
+      field("max_factor", &DetectionNoiseParams::max_factor).range(1, 100).doc("... and at most this times"),
+  };
+}
+
 Fields<WorldModelConfig> core_fields() {
   return {
       field("carried_ball_after", &WorldModelConfig::carried_ball_after).unit("s").range(0, 1)
@@ -106,6 +129,7 @@ Fields<WorldModelConfig> core_fields() {
           .doc("estimate each camera's calibration error from objects seen by two cameras"),
       nested("camera_alignment", &WorldModelConfig::camera_alignment, camera_alignment_fields()),
       nested("robot", &WorldModelConfig::robot, robot_fields()),
+      nested("detection_noise", &WorldModelConfig::detection_noise, detection_noise_fields()),
       nested("ball", &WorldModelConfig::ball, ball_fields()),
       nested("ball_model", &WorldModelConfig::ball_model, ball_model_fields()),
       field("min_confidence", &WorldModelConfig::min_confidence).range(0, 1),

@@ -157,6 +157,14 @@ void WorldModelNode::report_health(time::Timestamp now) {
                      {"rejected_geometry", rejected_geometry_},
                      {"rejected_referee", rejected_referee_},
                      {"low_confidence_detections", c.low_confidence}};
+  // Each camera's robot detection noise as the filters assume it (estimated, or configured until enough).
+  for (const auto& camera : model_.detection_noise().estimates()) {
+    const std::string prefix = "camera" + std::to_string(camera.camera_id);
+    report.counters.emplace_back(prefix + "_robot_noise_um",
+                                 static_cast<std::uint64_t>(std::lround(camera.noise.position_stddev * 1e6)));
+    report.counters.emplace_back(prefix + "_heading_noise_mrad",
+                                 static_cast<std::uint64_t>(std::lround(camera.noise.orientation_stddev * 1e3)));
+  }
   (void)health_.publish(report);
   processing_times_.clear();
   published_in_period_ = 0;

@@ -12,9 +12,10 @@
 //    state driven by white jerk that decays with acceleration_time_constant (accelerations do not last).
 //    The acceleration either stays in the field (a controller that re-aims the robot's velocity) or, once
 //    its centripetal part omega x v is taken off, turns with the robot (it holds or smoothly changes a
-//    LOCAL velocity command: then the velocity itself turns with the robot); the one whose one-step
-//    predictions recently matched the detections better is used. Both mean the same state, so switching
-//    needs no conversion.
+//    LOCAL velocity command: then the velocity itself turns with the robot); the one whose predictions over
+//    motion_model_horizon recently matched the detections better is used. Both mean the same state, so
+//    switching needs no conversion. The turn rate ramps with the angular acceleration of a small heading
+//    track [theta, omega, alpha] fed by the detected headings (a known input of these steps).
 //    How hard the robot manoeuvres is not known either: an interacting multiple model (IMM) runs one
 //    filter per jerk density (mode_jerk_stddev: e.g. standing or gliding, steering, sprinting and
 //    braking), mixes them before each step (Markov switching at mode_switch_rate) and weighs them by how
@@ -28,20 +29,22 @@
 // Out-of-order measurements (cameras are staggered and their delays jitter) are fused without rewinding:
 // a detection captured dt before the filter time is modelled as z = p - v dt + a dt^2 / 2.
 // Detections that fail the gate are outliers; two consecutive far detections that agree re-initialise the
-// track (a teleport: robot placed by hand or by the simulator).
+// track (a teleport: robot placed by hand or by the simulator). Each detection is weighed with the noise of
+// the camera that made it (DetectionNoise; default: position_stddev / orientation_stddev).
 #pragma once
 
 #include <array>
 #include <optional>
 #include <vector>
 
+#include "services/world_model/core/detection_noise.h"
 #include "services/world_model/core/kalman_filter.h"
 #include "libs/domain/world.h"
 
 namespace ssl::wm {
 
 struct RobotFilterParams {
-  double position_stddev = 0.002;         // m, detection noise assumed (per axis)
+  double position_stddev = 0.002;         // m, detection noise assumed (per axis) when update() is given none
   double orientation_stddev = 0.01;      // rad
   double acceleration_stddev = 2.0;       // m/s^2, prior spread of the acceleration (ax, ay) when the
                                           // uncommanded model takes over (new track, after contact/commands)
@@ -58,7 +61,7 @@ struct RobotFilterParams {
   double maneuver_noise_scale = 50;       // ... with this many times the process noise variance
   bool velocity_turns_with_robot = true;  // without a command, choose between a velocity (and acceleration)
                                           // that turns with the robot and a field one by their recent errors
-  double motion_model_memory = 0.95;      // per detection: weight of the past in that choice
+  double motion_model_memory = 0.9;       // per comparison (every motion_model_horizon): weight of the past
   double contact_acceleration_stddev = 4.0;  // m/s^2, process noise while touching a robot or a wall
   double contact_angular_acceleration_stddev = 30;  // rad/s^2
   // m/s^3 per sqrt(Hz): white jerk densities of the uncommanded model, one IMM mode each (1 to
@@ -68,6 +71,11 @@ struct RobotFilterParams {
   double stationary_drift_stddev = 0.0005;  // m per sqrt(s) ... its position drifts this much (pushed)
   double mode_switch_rate = 0.2;            // 1/s: expected switches between the modes
   double acceleration_time_constant = 0.5;  // s, without a command the acceleration decays so (0: held)
+  // rad/s^3 per sqrt(Hz): white angular jerk of the heading track [theta, omega, alpha] that gives the
+  // uncommanded model its angular acceleration (a robot whose turn rate ramps bends its path ever harder:
+  // a constant turn rate lags that). 0: the turn rate is held.
+  double angular_jerk_stddev = 3;
+  double motion_model_horizon = 0.1;  // s: the two uncommanded models are compared over this long
 };
 
 class RobotFilter {
@@ -79,7 +87,9 @@ class RobotFilter {
 
   enum class UpdateResult { kFused, kOutlier, kTeleported };
 
-  RobotFilter(const RobotFilterParams& params, const RobotDetection& detection, time::Timestamp t_capture);
+  /// A new track at `detection`; `noise`: its camera's detection noise (default: the params').
+  RobotFilter(const RobotFilterParams& params, const RobotDetection& detection, time::Timestamp t_capture,
+              std::optional<DetectionNoise> noise = std::nullopt);
 
   /// Records a command we sent to this robot at t_vision (vision clock). The robot executes it from
   /// t_vision + command_delay until the next one; predictions over an interval use the commands in force
@@ -88,8 +98,9 @@ class RobotFilter {
 
   /// Fuses one detection captured at t_capture (vision clock). `in_contact`: the robot touches another
   /// robot or a wall, so forces we do not know act on it: the commanded velocity is not trusted for this
-  /// step and the process noise is contact_*.
-  UpdateResult update(const RobotDetection& detection, time::Timestamp t_capture, bool in_contact = false);
+  /// step and the process noise is contact_*. `noise`: the detection's camera's noise (default: the params').
+  UpdateResult update(const RobotDetection& detection, time::Timestamp t_capture, bool in_contact = false,
+                      std::optional<DetectionNoise> noise = std::nullopt);
 
   /// State predicted to t (vision clock) without changing the track.
   State predict_state(time::Timestamp t) const;
@@ -137,6 +148,15 @@ class RobotFilter {
   /// The IMM cycle over the uncommanded modes: mixing, each mode's prediction (one Jacobian for all) and
   /// update, the mode probabilities, and the combined estimate into filter_.
   void update_modes(const RobotDetection& detection, time::Timestamp t_capture);
+  /// The heading's turn (rad) over dt > 0 and the turn rate (rad/s) after it, from `omega` with the
+  /// heading track's angular acceleration (uncommanded and stationary steps); decay = acceleration_decay(dt).
+  struct HeadingStep {
+    double turn = 0;
+    double omega = 0;
+  };
+  HeadingStep heading_step(double omega, double dt, double decay) const;
+  /// e^(-dt / acceleration_time_constant) (1 when it is 0: held).
+  double acceleration_decay(double dt) const;
   /// The uncommanded (Singer) step over dt > 0, the acceleration held in the field or, without its
   /// centripetal part, turning with the robot; its Jacobian into `jacobian` when given.
   State free_step(const State& x, double dt, bool turning, Filter::StateMatrix* jacobian) const;
@@ -145,9 +165,12 @@ class RobotFilter {
   /// The first command change strictly inside (from, to), or `to`.
   time::Timestamp next_command_change(time::Timestamp from, time::Timestamp to) const;
   void reset(const RobotDetection& detection, time::Timestamp t_capture);
-  void score_motion_models(const RobotDetection& detection, double dt);
+  void score_motion_models(const RobotDetection& detection, time::Timestamp t_capture);
+  /// Fuses the detection's heading into spin_ (when it has one and is newer) and takes its alpha.
+  void update_spin(const RobotDetection& detection, time::Timestamp t_capture);
 
   RobotFilterParams params_;
+  DetectionNoise noise_;         // of the detection being fused
   Filter filter_;                // the estimate (uncommanded: the IMM's combination of the modes)
   std::array<Filter, kMaxModes> modes_;               // uncommanded: one filter per mode
   std::array<double, kMaxModes> mode_probability_{};  // sums to 1 over the first mode_count_
@@ -162,6 +185,15 @@ class RobotFilter {
   static constexpr std::size_t kCommandHistory = 8;  // 80 ms at 100 Hz: covers the vision delay
   std::array<TimedCommand, kCommandHistory> commands_{};  // ring, oldest overwritten
   std::size_t command_count_ = 0;                        // commands ever recorded
+  // The heading track [theta, omega, alpha] (rad, rad/s, rad/s^2; white angular jerk): its alpha is the
+  // angular acceleration of the uncommanded steps, held over each step (a known input of the main filter).
+  KalmanFilter<3, 1> spin_;
+  time::Timestamp spin_time_;
+  double angular_acceleration_ = 0;  // rad/s^2, spin_'s alpha after the last detection
+  // The motion models' comparison: the estimate at anchor_time_, predicted by both to a detection
+  // motion_model_horizon later (one step's predictions differ by far less than the detection noise).
+  std::optional<State> anchor_;
+  time::Timestamp anchor_time_;
   std::optional<Vec2> teleport_candidate_;
   time::Timestamp teleport_candidate_time_;
 };

@@ -16,7 +16,8 @@ WorldModel::WorldModel(const WorldModelConfig& config)
       frame_(TeamFrame::make(config.team, kBlueOnPositiveHalfAtStart)),
       game_(config.team),
       ball_(config.ball, config.ball_model),
-      alignment_(config.camera_alignment) {}
+      alignment_(config.camera_alignment),
+      noise_(config.detection_noise, {config.robot.position_stddev, config.robot.orientation_stddev}) {}
 
 time::Timestamp WorldModel::to_vision(time::Timestamp now) const {
   return now - time::duration_from_seconds(offset_.value_or(0));
@@ -92,6 +93,8 @@ void WorldModel::update_robots(TeamColor team, std::uint32_t camera_id, std::spa
     }
     // Robots seen by two cameras at once measure the cameras' calibration disagreement; every detection
     // is then corrected by its camera's estimated error.
+    noise_.observe(camera_id, team, raw, t);
+    const DetectionNoise noise = noise_.noise(camera_id);
     RobotDetection detection = raw;
     if (config_.align_cameras) {
       alignment_.observe(camera_id, ObjectKey::robot(team, raw.id), raw.position, t);
@@ -99,11 +102,11 @@ void WorldModel::update_robots(TeamColor team, std::uint32_t camera_id, std::spa
     }
     Track& track = team_tracks[detection.id];
     if (!track) {
-      track.emplace(config_.robot, detection, t);
+      track.emplace(config_.robot, detection, t, noise);
       ++counters_.tracks_created;
       continue;
     }
-    switch (track->update(detection, t, in_contact(team, detection.id, detection.position))) {
+    switch (track->update(detection, t, in_contact(team, detection.id, detection.position), noise)) {
       case RobotFilter::UpdateResult::kFused: break;
       case RobotFilter::UpdateResult::kOutlier: ++counters_.outliers_rejected; break;
       case RobotFilter::UpdateResult::kTeleported: ++counters_.teleports; break;

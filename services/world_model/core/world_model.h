@@ -27,6 +27,7 @@
 #include "services/world_model/core/ball_filter.h"
 #include "services/world_model/core/camera_alignment.h"
 #include "services/world_model/core/chip_estimator.h"
+#include "services/world_model/core/detection_noise.h"
 #include "libs/domain/team_field.h"
 #include "libs/domain/game_state.h"
 #include "services/world_model/core/robot_filter.h"
@@ -57,6 +58,9 @@ struct WorldModelConfig {
   double carried_ball_timeout = 1.0;    // s ... right after touching a dribbler: it moves with that robot
                                         // until this long without a detection
   double chip_window = 1.5;             // s after a kick during which a chip flight is looked for/tracked
+  // Each camera's robot detection noise, estimated from its detections; the robot filters assume it
+  // instead of robot.position_stddev / orientation_stddev once a camera has enough residuals.
+  DetectionNoiseParams detection_noise;
   bool align_cameras = true;            // estimate and correct each camera's calibration error
   // Translation only by default: with well calibrated cameras the scale and rotation estimates add about
   // 1 mm of wandering correction (measured), more than they remove; enable them for a field whose camera
@@ -113,6 +117,8 @@ class WorldModel {
   const TeamFrame& team_frame() const { return frame_; }
   /// Per-camera calibration error estimates (vision frame).
   const CameraAlignment& camera_alignment() const { return alignment_; }
+  /// Per-camera robot detection noise estimates.
+  const DetectionNoiseEstimator& detection_noise() const { return noise_; }
   /// The last kick, in the TEAM frame.
   std::optional<KickEvent> last_kick() const;
   /// Host wall clock minus vision clock, s (nullopt before the first frame).
@@ -173,6 +179,7 @@ class WorldModel {
   std::array<std::array<std::optional<Vec2>, kMaxRobotsPerTeam>, 2> dribblers_;  // see predict_dribblers
   BallFilter ball_;
   CameraAlignment alignment_;
+  DetectionNoiseEstimator noise_;
   ChipTrack chip_;
   std::optional<RobotKey> carrier_;  // touching the ball at its last detection
   std::vector<CameraInfo> cameras_;  // from the geometry: camera centres for the chip reconstruction
