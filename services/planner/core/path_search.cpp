@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "libs/geometry/circle.h"
 #include "libs/geometry/contains.h"
@@ -85,6 +86,16 @@ bool boxes_overlap(const Vec2& a, const Vec2& b, const geom::Rectangle& r) {
          std::max(a.y(), b.y()) >= r.min().y() && std::min(a.y(), b.y()) <= r.max().y();
 }
 
+/// Whether the segment from `a` to `b` comes within `radius` (m) of the origin: most segments of a sweep are
+/// far from a robot obstacle, and their box tells so without the exact distance.
+bool reaches_origin(const Vec2& a, const Vec2& b, double radius) {
+  if (std::min(a.x(), b.x()) > radius || std::max(a.x(), b.x()) < -radius || std::min(a.y(), b.y()) > radius ||
+      std::max(a.y(), b.y()) < -radius) {
+    return false;
+  }
+  return geom::intersects(geom::Segment{a, b}, geom::Circle{Vec2::Zero(), radius});
+}
+
 /// The first step (its start time) at which `hit(k)` holds, for steps k = 0.. whose start lies before
 /// `before`; `escaping`: the robot starts inside, so steps count only once `left(k)` said it is out.
 template <typename Hit, typename Left>
@@ -102,9 +113,12 @@ std::optional<double> first_hit(std::size_t steps, const std::vector<double>& ti
 
 /// The sweep of one candidate: for each obstacle the first step at which the robot's chord comes into it
 /// (obstacles it starts in count once it has left them); the earliest over all obstacles. Obstacles whose
-/// box over the horizon misses the box of the whole path are skipped.
+/// box over the horizon misses the box of the whole path are skipped. `settled(t)`: whether a collision at
+/// t s already answers the caller (its candidate loses, whatever else there is): the sweep then stops and
+/// returns that collision, which need not be the earliest.
+template <typename Settled>
 std::optional<double> sweep(const TrajectoryPath& path, const Prepared& prepared, std::vector<Vec2>& points,
-                            std::vector<double>& times) {
+                            std::vector<double>& times, const Settled& settled) {
   const PathObstacles& obstacles = *prepared.obstacles;
   const double end = std::min(prepared.horizon, path.duration());
   const double margin = prepared.margin;
@@ -130,49 +144,60 @@ std::optional<double> sweep(const TrajectoryPath& path, const Prepared& prepared
   };
 
   double earliest = std::numeric_limits<double>::infinity();
+  // Keeps `hit`; true when the sweep can stop.
   const auto keep = [&](const std::optional<double>& hit) {
-    if (hit) earliest = std::min(earliest, *hit);
+    if (!hit) return false;
+    earliest = std::min(earliest, *hit);
+    return settled(earliest);
   };
   const auto never_left = [](std::size_t) { return false; };
   std::size_t robot = 0;
   for (const MovingCircle& c : obstacles.circles) {
-    const geom::Circle reach{Vec2::Zero(), prepared.robot_reach[robot++]};
-    if (misses_box(c.position, c.position_at(end), reach.radius)) continue;
+    const double reach = prepared.robot_reach[robot++];
+    if (misses_box(c.position, c.position_at(end), reach)) continue;
     const auto relative = [&](std::size_t k) { return Vec2(points[k] - c.position_at(times[k])); };
-    keep(first_hit(
+    if (keep(first_hit(
         steps, times, earliest, 0,
-        [&](std::size_t k) { return geom::intersects(geom::Segment{relative(k), relative(k + 1)}, reach); },
-        never_left));
+        [&](std::size_t k) { return reaches_origin(relative(k), relative(k + 1), reach); },
+        never_left))) {
+      return earliest;
+    }
   }
   for (std::size_t i = 0; i < obstacles.paths.size(); ++i) {
-    const geom::Circle reach{Vec2::Zero(), prepared.robot_reach[robot++]};
+    const double reach = prepared.robot_reach[robot++];
     const PathSamples& samples = *prepared.path_samples[i];
-    if (misses_box(samples.low, samples.high, reach.radius + margin)) continue;
+    if (misses_box(samples.low, samples.high, reach + margin)) continue;
     const auto relative = [&](std::size_t k) { return Vec2(points[k] - prepared.path_position(i, k, times[k])); };
-    keep(first_hit(
+    if (keep(first_hit(
         steps, times, earliest, 0,
-        [&](std::size_t k) { return geom::intersects(geom::Segment{relative(k), relative(k + 1)}, reach); },
-        never_left));
+        [&](std::size_t k) { return reaches_origin(relative(k), relative(k + 1), reach); },
+        never_left))) {
+      return earliest;
+    }
   }
   std::size_t index = 0;
   for (std::size_t i = 0; i < prepared.rectangles.size(); ++i) {
     const char escaping = prepared.inside_at_start[index++];
     const geom::Rectangle& grown = prepared.rectangles[i];
     if (!escaping && misses_box(grown.min(), grown.max(), 0)) continue;
-    keep(first_hit(
+    if (keep(first_hit(
         steps, times, earliest, escaping,
         [&](std::size_t k) {
           return boxes_overlap(points[k], points[k + 1], grown) &&
                  geom::intersects(geom::Segment{points[k], points[k + 1]}, grown);
         },
-        [&](std::size_t k) { return !obstacles.rectangles[i].contains(points[k + 1]); }));
+        [&](std::size_t k) { return !obstacles.rectangles[i].contains(points[k + 1]); }))) {
+      return earliest;
+    }
   }
   for (std::size_t i = 0; i < prepared.stadiums.size(); ++i) {
     const char escaping = prepared.inside_at_start[index++];
-    keep(first_hit(
+    if (keep(first_hit(
         steps, times, earliest, escaping,
         [&](std::size_t k) { return geom::intersects(geom::Segment{points[k], points[k + 1]}, prepared.stadiums[i]); },
-        [&](std::size_t k) { return !geom::contains(obstacles.stadiums[i], points[k + 1]); }));
+        [&](std::size_t k) { return !geom::contains(obstacles.stadiums[i], points[k + 1]); }))) {
+      return earliest;
+    }
   }
   if (obstacles.bounds) {
     const char escaping = prepared.inside_at_start[index++];
@@ -189,6 +214,9 @@ std::optional<double> sweep(const TrajectoryPath& path, const Prepared& prepared
 constexpr double kMinViaDistance = 0.15;
 /// s: a previous path whose switch is nearer than this is continued as the direct path.
 constexpr double kMinSwitchAhead = 0.02;
+/// s the duration bound of a candidate is lowered by against rounding, so that one left unplanned would
+/// certainly have lost.
+constexpr double kBoundSlack = 1e-9;
 
 double score_of(double duration, const std::optional<double>& collision, const PathSearchParams& params) {
   if (!collision) return duration;
@@ -234,7 +262,7 @@ std::optional<double> first_collision(const TrajectoryPath& path, const PathObst
   const Prepared prepared = prepare(path.position(0), path.destination(), obstacles, step, horizon, margin);
   std::vector<Vec2> points;
   std::vector<double> times;
-  return sweep(path, prepared, points, times);
+  return sweep(path, prepared, points, times, [](double) { return false; });
 }
 
 PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& destination,
@@ -246,68 +274,112 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
   std::vector<Vec2> points;
   std::vector<double> times;
   PathResult best;
-  bool have_best = false;
-  double best_rank = 0;  // the score, less keep_previous_margin for last tick's path
-  const auto consider = [&](const TrajectoryPath& candidate, bool is_previous) {
-    ++best.candidates;
-    const double bonus = is_previous ? params.keep_previous_margin : 0.0;
+  // The best path's rank (its score, less keep_previous_margin for last tick's path), then its index in the
+  // order the candidates are generated in: of equally ranked paths the first generated wins, whatever order
+  // they are evaluated in.
+  std::optional<std::pair<double, int>> best_rank;
+  // Whether candidate `index`, ranked no better than `rank`, may still win.
+  const auto may_win = [&](double rank, int index) { return !best_rank || std::pair(rank, index) < *best_rank; };
+  const auto bonus_of = [&](bool is_previous) { return is_previous ? params.keep_previous_margin : 0.0; };
+  const auto consider = [&](const TrajectoryPath& candidate, int index, bool is_previous) {
+    const double bonus = bonus_of(is_previous);
+    const double duration = candidate.duration();
     // Arrival time is a lower bound of the score: no sweep needed for a path that cannot win.
-    if (have_best && candidate.duration() - bonus >= best_rank) return;
-    const std::optional<double> collision = sweep(candidate, prepared, points, times);
-    const double score = score_of(candidate.duration(), collision, params);
-    if (!have_best || score - bonus < best_rank) {
+    if (!may_win(duration - bonus, index)) return;
+    // A collision that leaves the path ranked no better than the best: no need to sweep on.
+    const auto loses = [&](double collision) { return !may_win(score_of(duration, collision, params) - bonus, index); };
+    const std::optional<double> collision = sweep(candidate, prepared, points, times, loses);
+    const double score = score_of(duration, collision, params);
+    if (may_win(score - bonus, index)) {
       best.path = candidate;
       best.score = score;
       best.first_collision = collision;
-      best_rank = score - bonus;
-      have_best = true;
+      best_rank = {score - bonus, index};
     }
   };
-  // Towards `via`, left at `switch_time` (or on arrival) for the destination.
-  const auto via_path = [&](const Trajectory2D& first, const Vec2& via, double switch_time) {
-    if (switch_time >= first.duration()) {
-      return TrajectoryPath(first, first.duration(), Trajectory2D::plan(via, Vec2::Zero(), destination, limits));
-    }
-    return TrajectoryPath(first, switch_time,
-                          Trajectory2D::plan(first.position(switch_time), first.velocity(switch_time), destination,
-                                             limits));
+
+  // The first trajectories towards the sub-destinations, and the candidates that leave one of them at a
+  // switch time, before their second trajectory is planned: `bound` (s) is a lower bound of the duration.
+  std::vector<Trajectory2D> firsts;
+  struct ViaCandidate {
+    double bound = 0;
+    int index = 0;
+    std::size_t first = 0;  // in firsts
+    double switch_at = 0;   // s
+    Vec2 from = Vec2::Zero();
+    Vec2 speed = Vec2::Zero();
+    bool is_previous = false;
+  };
+  // firsts[`first`] towards `via`, left at `switch_time` (or on arrival) for the destination; counted.
+  const auto via_candidate = [&](std::size_t first, const Vec2& via, double switch_time, bool is_previous) {
+    const Trajectory2D& trajectory = firsts[first];
+    const bool on_arrival = switch_time >= trajectory.duration();
+    ViaCandidate c{.index = best.candidates++,
+                   .first = first,
+                   .switch_at = on_arrival ? trajectory.duration() : switch_time,
+                   .from = on_arrival ? via : trajectory.position(switch_time),
+                   .speed = on_arrival ? Vec2::Zero() : trajectory.velocity(switch_time),
+                   .is_previous = is_previous};
+    c.bound = c.switch_at + Trajectory2D::duration_bound(c.from, c.speed, destination, limits) - kBoundSlack;
+    return c;
+  };
+  // Plans and considers `c` unless its bound shows that it cannot win; whether it did.
+  const auto consider_via = [&](const ViaCandidate& c) {
+    if (!may_win(c.bound - bonus_of(c.is_previous), c.index)) return false;
+    consider(TrajectoryPath(firsts[c.first], c.switch_at, Trajectory2D::plan(c.from, c.speed, destination, limits)),
+             c.index, c.is_previous);
+    return true;
   };
   const auto usable_via = [&](const Vec2& via) {
     // A sub-destination the robot is already at is no detour: the path would stop there first.
     return (!obstacles.bounds || obstacles.bounds->contains(via)) && (via - position).norm() >= kMinViaDistance;
-  };
-  const auto through = [&](const Vec2& via) {
-    if (!usable_via(via)) return;
-    const Trajectory2D first = Trajectory2D::plan(position, velocity, via, limits);
-    for (const double switch_time : params.switch_times) {
-      consider(via_path(first, via, switch_time), false);
-      if (switch_time >= first.duration()) break;
-    }
   };
 
   // Last tick's path as it goes on: through its sub-destination until its switch, which comes closer every
   // tick; once passed, it is the direct path.
   const bool previous_switch_ahead =
       previous && !previous->is_direct() && previous->switch_time() - previous_age > kMinSwitchAhead;
-  consider(TrajectoryPath(Trajectory2D::plan(position, velocity, destination, limits)),
+  const int direct = best.candidates++;
+  consider(TrajectoryPath(Trajectory2D::plan(position, velocity, destination, limits)), direct,
            previous && !previous_switch_ahead);
   if (previous_switch_ahead && usable_via(previous->via())) {
-    const Trajectory2D first = Trajectory2D::plan(position, velocity, previous->via(), limits);
-    consider(via_path(first, previous->via(), previous->switch_time() - previous_age), true);
+    firsts.push_back(Trajectory2D::plan(position, velocity, previous->via(), limits));
+    consider_via(via_candidate(0, previous->via(), previous->switch_time() - previous_age, true));
   }
   if (best.first_collision && *best.first_collision < params.sample_below) {
+    const int around_destination = std::max(1, params.directions / 2);
+    const std::size_t vias = params.radii.size() * static_cast<std::size_t>(params.directions) +
+                             params.destination_radii.size() * static_cast<std::size_t>(around_destination);
+    firsts.reserve(firsts.size() + vias);
+    std::vector<ViaCandidate> sampled;
+    sampled.reserve(vias * params.switch_times.size());
+    const auto through = [&](const Vec2& via) {
+      if (!usable_via(via)) return;
+      firsts.push_back(Trajectory2D::plan(position, velocity, via, limits));
+      for (const double switch_time : params.switch_times) {
+        sampled.push_back(via_candidate(firsts.size() - 1, via, switch_time, false));
+        if (switch_time >= firsts.back().duration()) break;
+      }
+    };
     for (const double radius : params.radii) {
       for (int i = 0; i < params.directions; ++i) {
         const double angle = params.direction_offset + 2 * std::numbers::pi * i / params.directions;
         through(position + radius * Vec2(std::cos(angle), std::sin(angle)));
       }
     }
-    const int around_destination = std::max(1, params.directions / 2);
     for (const double radius : params.destination_radii) {
       for (int i = 0; i < around_destination; ++i) {
         const double angle = params.direction_offset + 2 * std::numbers::pi * i / around_destination;
         through(destination + radius * Vec2(std::cos(angle), std::sin(angle)));
       }
+    }
+    // Best bound first: a good path found early leaves the others unplanned, and once one cannot win, none
+    // after it can.
+    std::sort(sampled.begin(), sampled.end(), [](const ViaCandidate& a, const ViaCandidate& b) {
+      return std::pair(a.bound, a.index) < std::pair(b.bound, b.index);
+    });
+    for (const ViaCandidate& c : sampled) {
+      if (!consider_via(c)) break;
     }
   }
   return best;

@@ -9,6 +9,9 @@
 // collides, a penalty that is larger the sooner the first collision comes (see PathSearchParams). A static
 // zone the robot stands in at the start counts only once the path has left it (leaving it is always
 // allowed); a robot obstacle whose radius the robot starts inside must not be come any closer to.
+// The sampled candidates are tried in the order of a lower bound of their arrival time, known before their
+// second trajectory is planned; one that cannot beat the best so far is neither planned in full nor swept.
+// Of equal scores the candidate generated first wins, so the order of trial does not change the result.
 //
 // Everything is in one frame (the planner's team frame), metres and seconds from now. Pure: no clocks.
 //
@@ -125,7 +128,7 @@ struct PathResult {
   TrajectoryPath path;
   double score = 0;                               // s (arrival time, plus the penalties)
   std::optional<double> first_collision;          // s from now; nullopt: collision-free over the horizon
-  int candidates = 0;                             // paths evaluated
+  int candidates = 0;                             // paths generated (bounded; planned and swept if they may win)
 };
 
 /// The first time (s) `path` comes inside an obstacle grown by `margin` (m) within `horizon`, swept in

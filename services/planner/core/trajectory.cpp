@@ -158,6 +158,20 @@ Trajectory2D Trajectory2D::plan(const geom::Vec2& p0, const geom::Vec2& v0, cons
   return out;
 }
 
+double Trajectory2D::duration_bound(const geom::Vec2& p0, const geom::Vec2& v0, const geom::Vec2& target,
+                                    const TrajectoryLimits& limits) {
+  // An axis of plan() accelerates at most at its share of the limit and never gets faster than its initial
+  // speed or its share of the speed limit: it is one of the trajectories the 1D plan below is optimal among,
+  // so it takes at least as long, and plan() ends with its slower axis.
+  const auto axis = [&](double x0, double v, double to) {
+    return Trajectory1D::plan(x0, v, to,
+                              {.max_speed = std::max(limits.max_speed, std::abs(v)),
+                               .max_acceleration = limits.max_acceleration})
+        .duration();
+  };
+  return std::max(axis(p0.x(), v0.x(), target.x()), axis(p0.y(), v0.y(), target.y()));
+}
+
 Trajectory1D plan_rotation(double heading, double angular_velocity, double target, const TrajectoryLimits& limits) {
   const double turn = std::remainder(target - heading, 2 * std::numbers::pi);  // in [-pi, pi]
   return Trajectory1D::plan(heading, angular_velocity, heading + turn, limits);

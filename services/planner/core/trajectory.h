@@ -67,6 +67,11 @@ class Trajectory2D {
   /// end together.
   static Trajectory2D plan(const geom::Vec2& p0, const geom::Vec2& v0, const geom::Vec2& target,
                            const TrajectoryLimits& limits);
+  /// A lower bound (s) of plan(`p0`, `v0`, `target`, `limits`).duration(), at the cost of two 1D plans
+  /// instead of plan's search for the share of the limits: each axis alone, with the whole acceleration
+  /// limit and the speed limit raised to that axis' initial speed (a shared axis never exceeds either).
+  static double duration_bound(const geom::Vec2& p0, const geom::Vec2& v0, const geom::Vec2& target,
+                               const TrajectoryLimits& limits);
 
   double duration() const { return duration_; }
   geom::Vec2 position(double t) const { return {x_.position(t), y_.position(t)}; }

@@ -166,6 +166,26 @@ TEST(Trajectory2D, BothAxesEndTogetherOnTheTargetWithinTheLimits) {
   }
 }
 
+TEST(Trajectory2D, TheDurationBoundIsNeverAbovePlansDuration) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> position(-4, 4);
+  std::uniform_real_distribution<double> speed(-4, 4);
+  for (int i = 0; i < 2000; ++i) {
+    const geom::Vec2 p0(position(random), position(random));
+    const geom::Vec2 target(position(random), position(random));
+    const geom::Vec2 v0 = i % 4 == 0 ? geom::Vec2::Zero() : geom::Vec2(speed(random), speed(random));
+    const double planned = Trajectory2D::plan(p0, v0, target, kLimits).duration();
+    const double bound = Trajectory2D::duration_bound(p0, v0, target, kLimits);
+    SCOPED_TRACE(::testing::Message() << "p0 " << p0.transpose() << " v0 " << v0.transpose() << " to "
+                                      << target.transpose());
+    ASSERT_LE(bound, planned + 1e-12);
+    ASSERT_GT(bound, 0.0);
+  }
+  // Along an axis from rest the bound is the duration itself.
+  EXPECT_NEAR(Trajectory2D::duration_bound({0, 1}, {0, 0}, {5, 1}, kLimits),
+              Trajectory2D::plan({0, 1}, {0, 0}, {5, 1}, kLimits).duration(), 1e-3);
+}
+
 TEST(Trajectory2D, StandingOnTheTargetTakesNoTime) {
   const Trajectory2D t = Trajectory2D::plan({1, 2}, {0, 0}, {1, 2}, kLimits);
   EXPECT_EQ(t.duration(), 0.0);
