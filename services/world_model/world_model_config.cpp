@@ -50,8 +50,6 @@ Fields<RobotFilterParams> robot_fields() {
           .doc("per comparison of the two uncommanded models: weight of the past"),
       field("motion_model_horizon", &RobotFilterParams::motion_model_horizon).unit("s").range(0.01, 1)
           .doc("the two uncommanded models are compared over this long"),
-      field("angular_jerk_stddev", &RobotFilterParams::angular_jerk_stddev).unit("rad/s^3/sqrt(Hz)")
-          .range(0, 1000).doc("heading track's white angular jerk: uncommanded angular acceleration (0: none)"),
       field("contact_acceleration_stddev", &RobotFilterParams::contact_acceleration_stddev).unit("m/s^2")
           .range(0.01, 100),
       field("contact_angular_acceleration_stddev", &RobotFilterParams::contact_angular_acceleration_stddev)

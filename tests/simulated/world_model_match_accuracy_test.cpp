@@ -180,13 +180,13 @@ TEST_P(WorldModelMatchAccuracy, OwnRobotsAtLeastHalfOfRawAndOpponentsWellBelowRa
   tracked.report();
   EXPECT_GT(ball_travel, 3.0) << "a match did not play the ball";
   // Own robots (commands known): measured 69-78 % lower (4 matches pooled, WORLD_MODEL_MATCH_SEED 1, 5, 9, 13
-  // and the default, both divisions); asserted at 50 %. Opponents (no commands): 39-48 % for both models
-  // together, 39-49 % per model since the base strategy passes its kickoffs and cushions its receptions
-  // (more, and quicker, changes of direction to follow without commands; 44-56 % before), and a match's
-  // course is chaotic (any change to either planner or to the filter moves it by several points), so a
-  // seed-picked assertion of the design's 50 % budget flips with unrelated changes. Asserted is what holds
-  // across seeds: both models together at least 38 % lower, each at least 35 %. The 50 % budget itself is
-  // open in issue 17, to be measured over many matches in a bench, not here.
+  // and the default, both divisions); asserted at 50 %. Opponents (no commands): 38-47 % for both models
+  // together (those seeds, each camera's noise estimated) since the base strategy passes its kickoffs and
+  // cushions its receptions (more, and quicker, changes of direction to follow without commands; 44-56 %
+  // before), and a match's course is chaotic (any change to either planner or to the filter moves it by
+  // several points), so a seed-picked assertion of the design's 50 % budget flips with unrelated changes.
+  // Asserted is what holds across seeds: both models together at least 38 % lower, each at least 35 %. The
+  // 50 % budget itself is open in issue 17, to be measured over many matches in a bench, not here.
   for (const TeamErrors* e : {&blue_errors, &yellow_errors}) {
     EXPECT_GT(e->own_raw.n, 2000u * robots);
     EXPECT_LE(e->own_filtered.value(), 0.5 * e->own_raw.value());

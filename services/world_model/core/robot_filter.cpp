@@ -40,10 +40,6 @@ void RobotFilter::reset(const RobotDetection& detection, time::Timestamp t_captu
   const double sa = params_.acceleration_stddev;
   p0.diagonal() << sp * sp, sp * sp, so * so, 4.0, 4.0, 25.0, sa * sa, sa * sa;
   filter_.reset(x0, p0);
-  spin_.reset(Eigen::Vector3d(x0(2), 0, 0), Eigen::Vector3d(so * so, 25.0, 100.0).asDiagonal());
-  spin_.H << 1, 0, 0;
-  spin_time_ = t_capture;
-  angular_acceleration_ = 0;
   anchor_.reset();
   time_ = t_capture;
   last_update_ = t_capture;
@@ -88,28 +84,12 @@ time::Timestamp RobotFilter::next_command_change(time::Timestamp from, time::Tim
   return next;
 }
 
-RobotFilter::HeadingStep RobotFilter::heading_step(double omega, double dt, double decay) const {
-  // The angular acceleration of the heading track, decaying like the linear one (tau; 0: held):
-  // omega' = omega + alpha k with k = tau (1 - e^(-dt/tau)); the heading turns by omega dt + alpha tau (dt - k).
-  const double tau = params_.acceleration_time_constant;
-  const double alpha = angular_acceleration_;
-  if (tau <= 0) return {omega * dt + alpha * dt * dt / 2, omega + alpha * dt};
-  const double k = tau * (1 - decay);
-  return {omega * dt + alpha * tau * (dt - k), omega + alpha * k};
-}
-
-double RobotFilter::acceleration_decay(double dt) const {
-  const double tau = params_.acceleration_time_constant;
-  return tau > 0 ? std::exp(-dt / tau) : 1.0;
-}
-
 RobotFilter::State RobotFilter::free_step(const State& x, double dt, bool turning,
                                           Filter::StateMatrix* jacobian) const {
-  const double decay = acceleration_decay(dt);
-  const auto [turn, w_next] = heading_step(x(5), dt, decay);
+  const double decay =
+      params_.acceleration_time_constant > 0 ? std::exp(-dt / params_.acceleration_time_constant) : 1.0;
   State f = x;
-  f(2) += turn;
-  f(5) = w_next;
+  f(2) += x(5) * dt;
   const Vec2 v = x.segment<2>(3);
   const Vec2 a = x.segment<2>(6);
   if (!turning) {
@@ -127,11 +107,11 @@ RobotFilter::State RobotFilter::free_step(const State& x, double dt, bool turnin
     return f;
   }
   // The robot holds (or smoothly changes) a LOCAL velocity: what is left of the acceleration once the
-  // centripetal part w J v is taken off, a_r = a - w J v, turns with the robot: with R = R(turn),
-  // v' = R (v + a_r dt), a_r' = R a_r, a' = a_r' + w' J v', p' = p + dt (v + v') / 2.
+  // centripetal part w J v is taken off, a_r = a - w J v, turns with the robot: with R = R(w dt),
+  // v' = R (v + a_r dt), a_r' = R a_r, a' = a_r' + w J v', p' = p + dt (v + v') / 2.
   const double w = x(5);
-  const double c = std::cos(turn);
-  const double s = std::sin(turn);
+  const double c = std::cos(w * dt);
+  const double s = std::sin(w * dt);
   Eigen::Matrix2d rot;
   rot << c, -s, s, c;
   Eigen::Matrix2d perp;  // J: a quarter turn
@@ -139,7 +119,7 @@ RobotFilter::State RobotFilter::free_step(const State& x, double dt, bool turnin
   const Vec2 a_r = a - w * (perp * v);
   const Vec2 v_next = rot * (v + dt * a_r);
   const Vec2 a_r_next = decay * (rot * a_r);
-  const Vec2 a_next = a_r_next + w_next * (perp * v_next);
+  const Vec2 a_next = a_r_next + w * (perp * v_next);
   f.head<2>() += dt / 2 * (v + v_next);
   f.segment<2>(3) = v_next;
   f.segment<2>(6) = a_next;
@@ -158,7 +138,7 @@ RobotFilter::State RobotFilter::free_step(const State& x, double dt, bool turnin
     }();
     Rows d_arn = decay * (rot * d_ar);
     d_arn.col(5) += dt * (perp * a_r_next);
-    Rows d_an = d_arn + w_next * (perp * d_vn);
+    Rows d_an = d_arn + w * (perp * d_vn);
     d_an.col(5) += perp * v_next;
     jacobian->setIdentity();
     jacobian->block<2, 8>(0, 0) += dt / 2 * (d_v + d_vn);
@@ -367,7 +347,6 @@ RobotFilter::UpdateResult RobotFilter::update(const RobotDetection& detection, t
     predict_and_fuse(filter_, detection, t_capture, params_.mode_jerk_stddev.back());
     modes_stale_ = true;
   }
-  update_spin(detection, t_capture);
   if (dt > 0) time_ = t_capture;
   last_update_ = std::max(last_update_, t_capture);
   if (!anchor_ && dt > 0 && !commanded) {
@@ -375,22 +354,6 @@ RobotFilter::UpdateResult RobotFilter::update(const RobotDetection& detection, t
     anchor_time_ = t_capture;
   }
   return UpdateResult::kFused;
-}
-
-void RobotFilter::update_spin(const RobotDetection& detection, time::Timestamp t_capture) {
-  // [theta, omega, alpha] with white angular jerk; out-of-order detections are left to the main filter.
-  const double dt = time::to_seconds(t_capture - spin_time_);
-  if (params_.angular_jerk_stddev <= 0 || !detection.has_orientation || dt <= 0) return;
-  const double d2 = dt * dt, d3 = d2 * dt, d4 = d3 * dt, d5 = d4 * dt;
-  spin_.F << 1, dt, d2 / 2, 0, 1, dt, 0, 0, 1;
-  spin_.Q << d5 / 20, d4 / 8, d3 / 6, d4 / 8, d3 / 3, d2 / 2, d3 / 6, d2 / 2, dt;
-  spin_.Q *= params_.angular_jerk_stddev * params_.angular_jerk_stddev;
-  spin_.R(0, 0) = noise_.orientation_stddev * noise_.orientation_stddev;
-  spin_.predict(true);
-  spin_.update_with_innovation(Eigen::Matrix<double, 1, 1>(wrap(detection.orientation - spin_.state()(0))));
-  spin_.mutable_state()(0) = wrap(spin_.state()(0));
-  spin_time_ = t_capture;
-  angular_acceleration_ = spin_.state()(2);
 }
 
 RobotFilter::Innovation RobotFilter::innovation_of(const Filter& filter, const RobotDetection& detection,
@@ -533,9 +496,7 @@ void RobotFilter::update_modes(const RobotDetection& detection, time::Timestamp 
       // the position drifts a little, the heading turns as in the others (robots turn on the spot).
       if (dt > 0) {
         State x = mode.state();
-        const HeadingStep heading = heading_step(x(5), dt, acceleration_decay(dt));
-        x(2) = wrap(x(2) + heading.turn);
-        x(5) = heading.omega;
+        x(2) = wrap(x(2) + dt * x(5));
         x.segment<2>(3).setZero();
         x.segment<2>(6).setZero();
         mode.mutable_state() = x;

@@ -14,8 +14,7 @@
 //    its centripetal part omega x v is taken off, turns with the robot (it holds or smoothly changes a
 //    LOCAL velocity command: then the velocity itself turns with the robot); the one whose predictions over
 //    motion_model_horizon recently matched the detections better is used. Both mean the same state, so
-//    switching needs no conversion. The turn rate ramps with the angular acceleration of a small heading
-//    track [theta, omega, alpha] fed by the detected headings (a known input of these steps).
+//    switching needs no conversion.
 //    How hard the robot manoeuvres is not known either: an interacting multiple model (IMM) runs one
 //    filter per jerk density (mode_jerk_stddev: e.g. standing or gliding, steering, sprinting and
 //    braking), mixes them before each step (Markov switching at mode_switch_rate) and weighs them by how
@@ -71,10 +70,6 @@ struct RobotFilterParams {
   double stationary_drift_stddev = 0.0005;  // m per sqrt(s) ... its position drifts this much (pushed)
   double mode_switch_rate = 0.2;            // 1/s: expected switches between the modes
   double acceleration_time_constant = 0.5;  // s, without a command the acceleration decays so (0: held)
-  // rad/s^3 per sqrt(Hz): white angular jerk of the heading track [theta, omega, alpha] that gives the
-  // uncommanded model its angular acceleration (a robot whose turn rate ramps bends its path ever harder:
-  // a constant turn rate lags that). 0: the turn rate is held.
-  double angular_jerk_stddev = 3;
   double motion_model_horizon = 0.1;  // s: the two uncommanded models are compared over this long
 };
 
@@ -148,15 +143,6 @@ class RobotFilter {
   /// The IMM cycle over the uncommanded modes: mixing, each mode's prediction (one Jacobian for all) and
   /// update, the mode probabilities, and the combined estimate into filter_.
   void update_modes(const RobotDetection& detection, time::Timestamp t_capture);
-  /// The heading's turn (rad) over dt > 0 and the turn rate (rad/s) after it, from `omega` with the
-  /// heading track's angular acceleration (uncommanded and stationary steps); decay = acceleration_decay(dt).
-  struct HeadingStep {
-    double turn = 0;
-    double omega = 0;
-  };
-  HeadingStep heading_step(double omega, double dt, double decay) const;
-  /// e^(-dt / acceleration_time_constant) (1 when it is 0: held).
-  double acceleration_decay(double dt) const;
   /// The uncommanded (Singer) step over dt > 0, the acceleration held in the field or, without its
   /// centripetal part, turning with the robot; its Jacobian into `jacobian` when given.
   State free_step(const State& x, double dt, bool turning, Filter::StateMatrix* jacobian) const;
@@ -166,8 +152,6 @@ class RobotFilter {
   time::Timestamp next_command_change(time::Timestamp from, time::Timestamp to) const;
   void reset(const RobotDetection& detection, time::Timestamp t_capture);
   void score_motion_models(const RobotDetection& detection, time::Timestamp t_capture);
-  /// Fuses the detection's heading into spin_ (when it has one and is newer) and takes its alpha.
-  void update_spin(const RobotDetection& detection, time::Timestamp t_capture);
 
   RobotFilterParams params_;
   DetectionNoise noise_;         // of the detection being fused
@@ -185,11 +169,6 @@ class RobotFilter {
   static constexpr std::size_t kCommandHistory = 8;  // 80 ms at 100 Hz: covers the vision delay
   std::array<TimedCommand, kCommandHistory> commands_{};  // ring, oldest overwritten
   std::size_t command_count_ = 0;                        // commands ever recorded
-  // The heading track [theta, omega, alpha] (rad, rad/s, rad/s^2; white angular jerk): its alpha is the
-  // angular acceleration of the uncommanded steps, held over each step (a known input of the main filter).
-  KalmanFilter<3, 1> spin_;
-  time::Timestamp spin_time_;
-  double angular_acceleration_ = 0;  // rad/s^2, spin_'s alpha after the last detection
   // The motion models' comparison: the estimate at anchor_time_, predicted by both to a detection
   // motion_model_horizon later (one step's predictions differ by far less than the detection noise).
   std::optional<State> anchor_;
