@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/sample_stats.h"
 #include "libs/common/deploy_files.h"
 #include "libs/dds/participant.h"
 
@@ -35,23 +36,8 @@ using std::chrono::seconds;
 constexpr std::uint32_t kStopFrame = 0xFFFFFFFF;
 constexpr int kWarmup = 200;
 
-struct Stats {
-  double median_us = 0;
-  double p99_us = 0;
-  double max_us = 0;
-  std::size_t count = 0;
-};
-
-Stats summarize(std::vector<double> samples_us) {
-  std::sort(samples_us.begin(), samples_us.end());
-  Stats stats;
-  stats.count = samples_us.size();
-  if (samples_us.empty()) return stats;
-  stats.median_us = samples_us[samples_us.size() / 2];
-  stats.p99_us = samples_us[std::min(samples_us.size() - 1, samples_us.size() * 99 / 100)];
-  stats.max_us = samples_us.back();
-  return stats;
-}
+using ssl::bench::SampleStats;
+using ssl::bench::summarize;
 
 ssl::idl::vision::DetectionFrame make_frame() {
   ssl::idl::vision::DetectionFrame frame;
@@ -104,7 +90,7 @@ int dds_peer(int domain, const std::string& certs) {
   return fail("peer heard nothing for 30 s");
 }
 
-ssl::Result<Stats> dds_round_trips(int domain, int iterations, const std::string& certs, const char* self) {
+ssl::Result<SampleStats> dds_round_trips(int domain, int iterations, const std::string& certs, const char* self) {
   auto participant = ssl::dds::Participant::create(participant_options(domain, "bench/main", certs, kMainIdentity));
   if (!participant) return participant.error();
   auto pings = participant->make_writer(ssl::dds::topics::kVisionDetection);
@@ -187,7 +173,8 @@ int udp_peer(std::uint16_t port) {
   return fail("UDP peer heard nothing for 30 s");
 }
 
-ssl::Result<Stats> udp_round_trips(std::uint16_t port, int iterations, std::size_t payload_size, const char* self) {
+ssl::Result<SampleStats> udp_round_trips(std::uint16_t port, int iterations, std::size_t payload_size,
+                                         const char* self) {
   const int fd = udp_socket_on(0);
   if (fd < 0) return ssl::Error{"cannot bind a UDP socket"};
   const pid_t peer = fork();
@@ -265,16 +252,16 @@ int main(int argc, char** argv) {
   if (!udp) return fail(udp.error().message);
 
   std::printf("round trip between two processes, %d iterations, %zu-byte ping\n", iterations, payload);
-  std::printf("  %-28s median %8.1f us   p99 %8.1f us   max %8.1f us\n", "DDS (our wrappers)", dds->median_us,
-              dds->p99_us, dds->max_us);
+  std::printf("  %-28s median %8.1f us   p99 %8.1f us   max %8.1f us\n", "DDS (our wrappers)", dds->median,
+              dds->p99, dds->max);
   std::printf("  %-28s median %8.1f us   p99 %8.1f us   max %8.1f us\n", "DDS with DDS Security",
-              secure->median_us, secure->p99_us, secure->max_us);
-  std::printf("  %-28s median %8.1f us   p99 %8.1f us   max %8.1f us\n", "bare UDP socket", udp->median_us,
-              udp->p99_us, udp->max_us);
-  std::printf("  ratio DDS / UDP               median %8.2f x    p99 %8.2f x\n", dds->median_us / udp->median_us,
-              dds->p99_us / udp->p99_us);
-  std::printf("  ratio secure / insecure DDS   median %8.2f x    p99 %8.2f x\n", secure->median_us / dds->median_us,
-              secure->p99_us / dds->p99_us);
-  std::printf("BUDGET dds_round_trip_ratio_median %.2f\n", dds->median_us / udp->median_us);
+              secure->median, secure->p99, secure->max);
+  std::printf("  %-28s median %8.1f us   p99 %8.1f us   max %8.1f us\n", "bare UDP socket", udp->median,
+              udp->p99, udp->max);
+  std::printf("  ratio DDS / UDP               median %8.2f x    p99 %8.2f x\n", dds->median / udp->median,
+              dds->p99 / udp->p99);
+  std::printf("  ratio secure / insecure DDS   median %8.2f x    p99 %8.2f x\n", secure->median / dds->median,
+              secure->p99 / dds->p99);
+  std::printf("BUDGET dds_round_trip_ratio_median %.2f\n", dds->median / udp->median);
   return 0;
 }

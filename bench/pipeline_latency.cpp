@@ -48,6 +48,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/sample_stats.h"
 #include "libs/dds/participant.h"
 #include "libs/net/multicast.h"
 #include "libs/net/udp.h"
@@ -79,23 +80,8 @@ struct Options {
   int port = 44700;
 };
 
-struct Stats {
-  double median_ms = 0;
-  double p99_ms = 0;
-  double max_ms = 0;
-  std::size_t count = 0;
-};
-
-Stats summarize(std::vector<double> ms) {
-  Stats stats;
-  stats.count = ms.size();
-  if (ms.empty()) return stats;
-  std::sort(ms.begin(), ms.end());
-  stats.median_ms = ms[ms.size() / 2];
-  stats.p99_ms = ms[std::min(ms.size() - 1, ms.size() * 99 / 100)];
-  stats.max_ms = ms.back();
-  return stats;
-}
+using ssl::bench::SampleStats;
+using ssl::bench::summarize;
 
 int fail(const std::string& message) {
   std::fprintf(stderr, "pipeline_latency: %s\n", message.c_str());
@@ -235,15 +221,15 @@ struct Sent {
 };
 
 struct PipelineResult {
-  Stats stats;
+  SampleStats stats;
   // sendto -> the frame's first robot.commands sample received here (vision_gateway, world_model, planner:
   // the design's three-process figure).
-  Stats to_commands;
+  SampleStats to_commands;
   // Where the time goes (same packets): sendto -> vision_gateway receive, -> robot_link send returned,
   // -> this process's receive.
-  Stats to_gateway;
-  Stats through_services;
-  Stats to_here;
+  SampleStats to_gateway;
+  SampleStats through_services;
+  SampleStats to_here;
   std::size_t frames_sent = 0;
   std::size_t packets = 0;
   std::size_t heartbeats = 0;
@@ -418,7 +404,7 @@ int relay(int in_port, int out_port) {
   }
 }
 
-ssl::Result<Stats> run_relay(const Options& options) {
+ssl::Result<SampleStats> run_relay(const Options& options) {
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
   const int first = options.port + 2;
   const int out_port = options.port + 6;
@@ -460,7 +446,7 @@ ssl::Result<Stats> run_relay(const Options& options) {
       ms.push_back(static_cast<double>(arrival.at_ns - in) * 1e-6);
     }
   }
-  Stats stats = summarize(std::move(ms));
+  SampleStats stats = summarize(std::move(ms));
   if (stats.count == 0) return ssl::Error{"nothing came through the relay"};
   return stats;
 }
@@ -523,33 +509,33 @@ int main(int argc, char** argv) {
     if (!pipeline) return fail("pipeline: " + pipeline.error().message);
     auto relay = run_relay(scenario);
     if (!relay) return fail("relay: " + relay.error().message);
-    const Stats& p = pipeline->stats;
+    const SampleStats& p = pipeline->stats;
     std::printf("vision packet in -> command datagram out, %u camera(s) at %.0f Hz (%.0f frames/s), %u frames "
                 "each; load average %s before, %s after\n",
                 scenario.cameras, scenario.rate, scenario.cameras * scenario.rate, scenario.frames, before.c_str(),
                 load_average().c_str());
     std::printf("  %-58s median %7.3f ms   p99 %7.3f ms   max %7.3f ms   (%zu of %zu frames reached the radio as "
                 "new commands; %zu heartbeats)\n",
-                "pipeline: vision_gateway, world_model, planner, robot_link", p.median_ms, p.p99_ms, p.max_ms,
+                "pipeline: vision_gateway, world_model, planner, robot_link", p.median, p.p99, p.max,
                 p.count, pipeline->frames_sent, pipeline->heartbeats);
     std::printf("  %-58s median %7.3f ms   p99 %7.3f ms   max %7.3f ms   (%zu frames)\n",
-                "to robot.commands (vision_gateway, world_model, planner)", pipeline->to_commands.median_ms,
-                pipeline->to_commands.p99_ms, pipeline->to_commands.max_ms, pipeline->to_commands.count);
+                "to robot.commands (vision_gateway, world_model, planner)", pipeline->to_commands.median,
+                pipeline->to_commands.p99, pipeline->to_commands.max, pipeline->to_commands.count);
     for (const auto& [name, stage] : {std::pair{"  of which sendto -> vision_gateway receive", &pipeline->to_gateway},
                                       std::pair{"  of which -> robot_link's send returned", &pipeline->through_services},
                                       std::pair{"  of which -> datagram received here", &pipeline->to_here}}) {
-      std::printf("  %-58s median %7.3f ms   p99 %7.3f ms   max %7.3f ms\n", name, stage->median_ms, stage->p99_ms,
-                  stage->max_ms);
+      std::printf("  %-58s median %7.3f ms   p99 %7.3f ms   max %7.3f ms\n", name, stage->median, stage->p99,
+                  stage->max);
     }
     std::printf("  %-58s median %7.3f ms   p99 %7.3f ms   max %7.3f ms   (%zu frames)\n",
-                "bare UDP relay, 4 processes", relay->median_ms, relay->p99_ms, relay->max_ms, relay->count);
-    std::printf("  %-58s median %7.1f x    p99 %7.1f x\n", "ratio pipeline / relay", p.median_ms / relay->median_ms,
-                p.p99_ms / relay->p99_ms);
+                "bare UDP relay, 4 processes", relay->median, relay->p99, relay->max, relay->count);
+    std::printf("  %-58s median %7.1f x    p99 %7.1f x\n", "ratio pipeline / relay", p.median / relay->median,
+                p.p99 / relay->p99);
     if (run == 0) {
-      std::printf("BUDGET commands_latency_median_ms %.3f\n", pipeline->to_commands.median_ms);
-      std::printf("BUDGET commands_latency_p99_ms %.3f\n", pipeline->to_commands.p99_ms);
-      std::printf("BUDGET pipeline_latency_median_ms %.3f\n", p.median_ms);
-      std::printf("BUDGET pipeline_latency_p99_ms %.3f\n", p.p99_ms);
+      std::printf("BUDGET commands_latency_median_ms %.3f\n", pipeline->to_commands.median);
+      std::printf("BUDGET commands_latency_p99_ms %.3f\n", pipeline->to_commands.p99);
+      std::printf("BUDGET pipeline_latency_median_ms %.3f\n", p.median);
+      std::printf("BUDGET pipeline_latency_p99_ms %.3f\n", p.p99);
     } else {
       std::printf("  (radio-rate limited: the budget allows one radio period more than the run above)\n");
     }
