@@ -45,14 +45,6 @@ Scenario mismatched() {
   return s;
 }
 
-sim::RobotCommand curve(double t, double phase) {
-  sim::RobotCommand c;
-  c.move = sim::RobotCommand::Move::kLocalVelocity;
-  c.velocity = sim::Vec3(1.2 + 0.6 * std::sin(0.9 * t + phase), 0.3 * std::sin(1.3 * t + phase),
-                         2.0 * std::sin(0.7 * t + 2 * phase));
-  return c;
-}
-
 // 11 v 11 driving curves for 4 s, the ball rolling among them; records every frame and the RMS of both
 // teams' robots and of the ball, raw vs filtered, at each frame's capture time (after the first second).
 Recording record(const Scenario& scenario) {
@@ -79,7 +71,7 @@ Recording record(const Scenario& scenario) {
         const double t = time::to_seconds(harness.now() - start);
         for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
           std::vector<sim::RobotCommandFor> commands;
-          for (std::uint32_t id = 0; id < 11; ++id) commands.push_back({id, curve(t, id + 0.5 * (team == TeamColor::kYellow))});
+          for (std::uint32_t id = 0; id < 11; ++id) commands.push_back({id, testing::curve_command(t, id + 0.5 * (team == TeamColor::kYellow))});
           harness.command(team, commands, team == TeamColor::kBlue);
         }
       },

@@ -1,6 +1,5 @@
 #include "services/robot_link/adapter/link_runner.h"
 
-
 namespace ssl::robot_link {
 namespace {
 

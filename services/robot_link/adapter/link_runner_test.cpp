@@ -60,12 +60,19 @@ CoreConfig test_config() {
   return config;
 }
 
+/// A runner on a simulated clock starting at `start`, sending into a FakeBackend.
+struct RunnerRig {
+  explicit RunnerRig(time::Timestamp start) : clock(start) {}
+  time::SimulatedClock clock;
+  FakeBackend backend{clock};
+  InputMailbox mailbox;
+  LinkRunner runner{test_config(), backend, mailbox};
+};
+
 TEST(RobotLinkRunnerTest, SleepsBetweenHeartbeatsEveryPeriodAndTheWatchdogStopsASilentPlanner) {
   const time::Timestamp start = time::Timestamp::from_milliseconds(5'000'000);
-  time::SimulatedClock clock(start);
-  FakeBackend backend(clock);
-  InputMailbox mailbox;
-  LinkRunner runner(test_config(), backend, mailbox);
+  RunnerRig rig(start);
+  auto& [clock, backend, mailbox, runner] = rig;
   const RobotCommand command{.id = 2, .forward = 0.5};
   mailbox.on_commands(std::span(&command, 1), start);  // the planner's last sample, then silence
 
@@ -104,10 +111,8 @@ TEST(RobotLinkRunnerTest, SleepsBetweenHeartbeatsEveryPeriodAndTheWatchdogStopsA
 
 TEST(RobotLinkRunnerTest, NewCommandsGoOutAtOnceWithinTheRadiosRateAndAtMostOnePeriodLate) {
   const time::Timestamp start = time::Timestamp::from_milliseconds(5'000'000);
-  time::SimulatedClock clock(start);
-  FakeBackend backend(clock);
-  InputMailbox mailbox;
-  LinkRunner runner(test_config(), backend, mailbox);
+  RunnerRig rig(start);
+  auto& [clock, backend, mailbox, runner] = rig;
   const auto arrive = [&](double forward) {
     const RobotCommand command{.id = 2, .forward = forward};
     mailbox.on_commands(std::span(&command, 1), clock.now());
@@ -147,10 +152,8 @@ TEST(RobotLinkRunnerTest, NewCommandsGoOutAtOnceWithinTheRadiosRateAndAtMostOneP
 }
 
 TEST(RobotLinkRunnerTest, EstopAndHaltGoOutAtOnceEvenWhenTheRateIsUsedUp) {
-  time::SimulatedClock clock(time::Timestamp::from_milliseconds(1000));
-  FakeBackend backend(clock);
-  InputMailbox mailbox;
-  LinkRunner runner(test_config(), backend, mailbox);
+  RunnerRig rig(time::Timestamp::from_milliseconds(1000));
+  auto& [clock, backend, mailbox, runner] = rig;
   const RobotCommand command{.id = 4, .forward = 1};
   mailbox.on_commands(std::span(&command, 1), clock.now());
   ASSERT_TRUE(runner.poll(clock.now()));
@@ -180,10 +183,8 @@ TEST(RobotLinkRunnerTest, EstopAndHaltGoOutAtOnceEvenWhenTheRateIsUsedUp) {
 }
 
 TEST(RobotLinkRunnerTest, FinalStopStopsEveryKnownRobotAndEstopLatchesInTheMailbox) {
-  time::SimulatedClock clock(time::Timestamp::from_milliseconds(1000));
-  FakeBackend backend(clock);
-  InputMailbox mailbox;
-  LinkRunner runner(test_config(), backend, mailbox);
+  RunnerRig rig(time::Timestamp::from_milliseconds(1000));
+  auto& [clock, backend, mailbox, runner] = rig;
   const RobotCommand commands[] = {{.id = 1, .forward = 1}, {.id = 6, .left = 1}};
   mailbox.on_commands(commands, clock.now());
   TickResult running = runner.send(clock.now());

@@ -32,14 +32,10 @@ DetectionNoiseEstimator::DetectionNoiseEstimator(const DetectionNoiseParams& par
                                                  const DetectionNoise& configured)
     : params_(params), configured_(configured) {}
 
-DetectionNoiseEstimator::Camera& DetectionNoiseEstimator::camera(std::uint32_t camera_id) {
-  return cameras_[camera_id];
-}
-
 void DetectionNoiseEstimator::observe(std::uint32_t camera_id, TeamColor team, const RobotDetection& detection,
                                       time::Timestamp t) {
   if (!params_.estimate || detection.id >= kMaxRobotsPerTeam) return;
-  Camera& cam = camera(camera_id);
+  Camera& cam = cameras_[camera_id];
   History& history = cam.robots[(team == TeamColor::kBlue ? 0 : kMaxRobotsPerTeam) + detection.id];
   const Sample now{t, detection.position, detection.orientation, detection.has_orientation};
   if (history.count > 0 && t <= history.samples[1].t) {

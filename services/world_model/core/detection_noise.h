@@ -86,7 +86,6 @@ class DetectionNoiseEstimator {
     Average position;
     Average orientation;
   };
-  Camera& camera(std::uint32_t camera_id);
 
   DetectionNoiseParams params_;
   DetectionNoise configured_;

@@ -63,6 +63,17 @@ struct Rms {
   double value() const { return n ? std::sqrt(sum / static_cast<double>(n)) : 0; }
 };
 
+/// The hard continuous curves the accuracy test and the benchmark drive: a LOCAL velocity command (m/s,
+/// rad/s) whose speed, sideways part and turn rate all change all the time, at time t (s); `phase` (rad)
+/// sets each robot apart.
+inline sim::RobotCommand curve_command(double t, double phase) {
+  sim::RobotCommand c;
+  c.move = sim::RobotCommand::Move::kLocalVelocity;
+  c.velocity = sim::Vec3(1.2 + 0.6 * std::sin(0.9 * t + phase), 0.3 * std::sin(1.3 * t + phase),
+                         2.0 * std::sin(0.7 * t + 2 * phase));
+  return c;
+}
+
 struct HarnessOptions {
   std::uint32_t robots_per_team = 0;
   sim::RealismConfig realism = sim::RealismConfig::realistic();

@@ -150,9 +150,7 @@ TEST(WorldModelAccuracy, RobotPositionAndVelocityRmsAtLeastHalfOfRawUnderRealist
     for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
       std::vector<sim::RobotCommandFor> commands;
       for (std::uint32_t id = 0; id < 6; ++id) {
-        const double phase = id + (team == TeamColor::kYellow ? 0.5 : 0);
-        commands.push_back({id, local(1.2 + 0.6 * std::sin(0.9 * t + phase), 0.3 * std::sin(1.3 * t + phase),
-                                      2.0 * std::sin(0.7 * t + 2 * phase))});
+        commands.push_back({id, testing::curve_command(t, id + (team == TeamColor::kYellow ? 0.5 : 0))});
       }
       harness.command(team, commands, team == TeamColor::kBlue);
     }
@@ -238,10 +236,7 @@ TEST(WorldModelAccuracy, EachCamerasRobotNoiseIsEstimatedAndTheFiltersUseIt) {
     t_cmd = harness.now() + 10ms;
     const double t = time::to_seconds(harness.now() - start);
     std::vector<sim::RobotCommandFor> commands;
-    for (std::uint32_t id = 0; id < 6; ++id) {
-      commands.push_back({id, local(1.2 + 0.6 * std::sin(0.9 * t + id), 0.3 * std::sin(1.3 * t + id),
-                                    2.0 * std::sin(0.7 * t + 2 * id))});
-    }
+    for (std::uint32_t id = 0; id < 6; ++id) commands.push_back({id, testing::curve_command(t, id)});
     harness.command(TeamColor::kYellow, commands, false);
   };
   h.run(8s, drive, [&](const sim::DetectionFrame& frame) {
