@@ -71,7 +71,9 @@ Recording record(const Scenario& scenario) {
         const double t = time::to_seconds(harness.now() - start);
         for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
           std::vector<sim::RobotCommandFor> commands;
-          for (std::uint32_t id = 0; id < 11; ++id) commands.push_back({id, testing::curve_command(t, id + 0.5 * (team == TeamColor::kYellow))});
+          for (std::uint32_t id = 0; id < 11; ++id) {
+            commands.push_back({id, testing::curve_command(t, id + 0.5 * (team == TeamColor::kYellow))});
+          }
           harness.command(team, commands, team == TeamColor::kBlue);
         }
       },
