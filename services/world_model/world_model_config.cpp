@@ -10,7 +10,7 @@ using config::Fields;
 using config::nested;
 
 Fields<RobotFilterParams> robot_fields() {
-  return {
+  return Fields<RobotFilterParams>{
       field("position_stddev", &RobotFilterParams::position_stddev).unit("m").range(1e-4, 0.1),
       field("orientation_stddev", &RobotFilterParams::orientation_stddev).unit("rad").range(1e-4, 1),
       field("acceleration_stddev", &RobotFilterParams::acceleration_stddev).unit("m/s^2").range(0.01, 100)
@@ -18,6 +18,12 @@ Fields<RobotFilterParams> robot_fields() {
       field("mode_jerk_stddev", &RobotFilterParams::mode_jerk_stddev).unit("m/s^3/sqrt(Hz)")
           .range(0.001, 1000).length(1, RobotFilter::kMaxJerkModes)
           .doc("white jerk densities of the uncommanded (Singer) model, one IMM mode each: enemy robots"),
+      field("mode_angular_acceleration_stddev", &RobotFilterParams::mode_angular_acceleration_stddev)
+          .unit("rad/s^2").range(0.01, 1000).length(1, RobotFilter::kMaxJerkModes)
+          .doc("each of those modes' white angular acceleration"),
+      field("mode_acceleration_time_constant", &RobotFilterParams::mode_acceleration_time_constant).unit("s")
+          .range(0, 100).length(1, RobotFilter::kMaxJerkModes)
+          .doc("each of those modes' acceleration decays with it (0: held)"),
       field("mode_switch_rate", &RobotFilterParams::mode_switch_rate).unit("1/s").range(0.001, 100)
           .doc("expected switches per second between those modes"),
       field("stationary_mode", &RobotFilterParams::stationary_mode)
@@ -25,7 +31,7 @@ Fields<RobotFilterParams> robot_fields() {
       field("stationary_drift_stddev", &RobotFilterParams::stationary_drift_stddev).unit("m/sqrt(s)")
           .range(1e-6, 1).doc("how far a standing robot's position may drift (pushed)"),
       field("acceleration_time_constant", &RobotFilterParams::acceleration_time_constant).unit("s")
-          .range(0, 100).doc("without a command the acceleration decays with it (0: held)"),
+          .range(0, 100).doc("a single filter's acceleration decays with it (0: held); also the published prediction's"),
       field("commanded_acceleration_stddev", &RobotFilterParams::commanded_acceleration_stddev)
           .unit("m/s^2").range(0.01, 100).doc("process noise while following our command"),
       field("angular_acceleration_stddev", &RobotFilterParams::angular_acceleration_stddev)
@@ -42,19 +48,32 @@ Fields<RobotFilterParams> robot_fields() {
       field("maneuver_gate", &RobotFilterParams::maneuver_gate).range(1, 1e6)
           .doc("chi-square (3 dof): beyond it a step is re-predicted with more process noise"),
       field("maneuver_noise_scale", &RobotFilterParams::maneuver_noise_scale).range(1, 1e6),
+      field("collision_velocity_stddev", &RobotFilterParams::collision_velocity_stddev).unit("m/s")
+          .range(0.01, 10).doc("beyond the maneuver gate the IMM's loosest mode takes a velocity impulse"),
       field("command_delay", &RobotFilterParams::command_delay).unit("s").range(0, 1)
           .doc("sent -> executed by the robot"),
       field("velocity_turns_with_robot", &RobotFilterParams::velocity_turns_with_robot)
           .doc("without a command, also try a velocity that turns with the robot"),
-      field("motion_model_memory", &RobotFilterParams::motion_model_memory).range(0, 0.9999)
-          .doc("per comparison of the two uncommanded models: weight of the past"),
-      field("motion_model_horizon", &RobotFilterParams::motion_model_horizon).unit("s").range(0.01, 1)
-          .doc("the two uncommanded models are compared over this long"),
+      field("motion_model_time_constant", &RobotFilterParams::motion_model_time_constant).unit("s")
+          .range(0.001, 10).doc("memory of the choice between the two uncommanded models"),
       field("contact_acceleration_stddev", &RobotFilterParams::contact_acceleration_stddev).unit("m/s^2")
           .range(0.01, 100),
       field("contact_angular_acceleration_stddev", &RobotFilterParams::contact_angular_acceleration_stddev)
           .unit("rad/s^2").range(0.1, 1000),
-  };
+  }
+      .check([](const RobotFilterParams& robot) -> Status {
+        const std::size_t modes = robot.mode_jerk_stddev.size();
+        for (const auto& [name, values] : {std::pair{"mode_angular_acceleration_stddev",
+                                                     &robot.mode_angular_acceleration_stddev},
+                                           std::pair{"mode_acceleration_time_constant",
+                                                     &robot.mode_acceleration_time_constant}}) {
+          if (values->size() != modes) {
+            return Error{std::string(name) + " needs one value per mode_jerk_stddev (" + std::to_string(modes) +
+                         "), has " + std::to_string(values->size())};
+          }
+        }
+        return {};
+      });
 }
 
 Fields<BallFilterParams> ball_fields() {

@@ -16,6 +16,9 @@ double ramp(double current, double target, double max_step) {
   return current + std::clamp(target - current, -max_step, max_step);
 }
 
+/// What is left of an acceleration after dt (s) with time constant `time_constant` (s; 0: all of it).
+double decay_over(double dt, double time_constant) { return time_constant > 0 ? std::exp(-dt / time_constant) : 1.0; }
+
 }  // namespace
 
 RobotFilter::RobotFilter(const RobotFilterParams& params, const RobotDetection& detection,
@@ -26,6 +29,11 @@ RobotFilter::RobotFilter(const RobotFilterParams& params, const RobotDetection& 
                   (params.stationary_mode ? 1 : 0)) {
   if (params_.mode_jerk_stddev.empty() || params_.mode_jerk_stddev.size() > kMaxJerkModes) {
     throw std::invalid_argument("RobotFilterParams::mode_jerk_stddev needs 1 to 4 values");
+  }
+  if (params_.mode_angular_acceleration_stddev.size() != params_.mode_jerk_stddev.size() ||
+      params_.mode_acceleration_time_constant.size() != params_.mode_jerk_stddev.size()) {
+    throw std::invalid_argument("RobotFilterParams::mode_angular_acceleration_stddev and "
+                                "mode_acceleration_time_constant need one value per mode_jerk_stddev");
   }
   reset(detection, t_capture);
 }
@@ -40,7 +48,6 @@ void RobotFilter::reset(const RobotDetection& detection, time::Timestamp t_captu
   const double sa = params_.acceleration_stddev;
   p0.diagonal() << sp * sp, sp * sp, so * so, 4.0, 4.0, 25.0, sa * sa, sa * sa;
   filter_.reset(x0, p0);
-  anchor_.reset();
   time_ = t_capture;
   last_update_ = t_capture;
   teleport_candidate_.reset();
@@ -84,10 +91,8 @@ time::Timestamp RobotFilter::next_command_change(time::Timestamp from, time::Tim
   return next;
 }
 
-RobotFilter::State RobotFilter::free_step(const State& x, double dt, bool turning,
-                                          Filter::StateMatrix* jacobian) const {
-  const double decay =
-      params_.acceleration_time_constant > 0 ? std::exp(-dt / params_.acceleration_time_constant) : 1.0;
+RobotFilter::State RobotFilter::free_step(const State& x, double dt, bool turning, double decay,
+                                          Filter::StateMatrix* jacobian) {
   State f = x;
   f(2) += x(5) * dt;
   const Vec2 v = x.segment<2>(3);
@@ -147,6 +152,27 @@ RobotFilter::State RobotFilter::free_step(const State& x, double dt, bool turnin
     jacobian->block<2, 8>(6, 0) = d_an;
   }
   return f;
+}
+
+RobotFilter::Filter::StateMatrix RobotFilter::heading_noise(const State& x, double dt, double angular_stddev,
+                                                           bool turning) {
+  // Discrete white angular acceleration on [theta, omega], mapped by G onto the state. Turning: the
+  // velocity and the acceleration turn with the heading (a turn dtheta adds dtheta J v and dtheta J a), and
+  // a change domega of the turn rate changes the centripetal acceleration by domega J v.
+  const double var = angular_stddev * angular_stddev;
+  Eigen::Matrix2d q;
+  q << dt * dt * dt * dt / 4 * var, dt * dt * dt / 2 * var, dt * dt * dt / 2 * var, dt * dt * var;
+  Eigen::Matrix<double, 8, 2> g = Eigen::Matrix<double, 8, 2>::Zero();
+  g(2, 0) = g(5, 1) = 1;
+  if (turning) {
+    Eigen::Matrix2d perp;  // J: a quarter turn
+    perp << 0, -1, 1, 0;
+    g.block<2, 1>(3, 0) = perp * x.segment<2>(3);
+    g.block<2, 1>(6, 0) = perp * x.segment<2>(6);
+    g.block<2, 1>(6, 1) = perp * x.segment<2>(3);
+  }
+  const Eigen::Matrix<double, 8, 2> gq = g.lazyProduct(q);
+  return gq.lazyProduct(g.transpose());
 }
 
 RobotFilter::State RobotFilter::step(const State& x, double dt, const RobotCommand* command, double jerk_stddev,
@@ -215,7 +241,7 @@ RobotFilter::State RobotFilter::step(const State& x, double dt, const RobotComma
     }
   } else if (free) {
     // Constant (Singer: mean-reverting) FIELD acceleration, held in the field or turning with the robot.
-    f = free_step(x, dt, turn_model_, jacobian);
+    f = free_step(x, dt, turn_model_, decay_over(dt, params_.acceleration_time_constant), jacobian);
   }
   if (!noise) return f;
   Filter::StateMatrix& Q = *noise;
@@ -242,13 +268,14 @@ RobotFilter::State RobotFilter::step(const State& x, double dt, const RobotComma
   const double q11 = adt * adt * adt * adt / 4;
   const double q12 = adt * adt * adt / 2;
   const double q22 = adt * adt;
-  for (int i = 0; i < 3; ++i) {
-    const double var = (i < 2 ? sa * sa : sw * sw) * noise_scale_;
+  for (int i = 0; i < 2; ++i) {
+    const double var = sa * sa * noise_scale_;
     Q(i, i) += q11 * var;
     Q(i, i + 3) += q12 * var;
     Q(i + 3, i) += q12 * var;
     Q(i + 3, i + 3) += q22 * var;
   }
+  Q += heading_noise(x, adt, sw * std::sqrt(noise_scale_), free && turn_model_);
   return f;
 }
 
@@ -291,25 +318,24 @@ RobotFilter::State RobotFilter::predict_state(time::Timestamp t) const {
   return x;
 }
 
-void RobotFilter::score_motion_models(const RobotDetection& detection, time::Timestamp t_capture) {
+void RobotFilter::score_motion_models(time::Timestamp t_capture) {
   // Without a command the robot either holds a LOCAL velocity (the velocity turns with it) or a GLOBAL
-  // one (its controller re-aims it). Both models predict the estimate of motion_model_horizon ago to this
-  // detection (one step's predictions differ by a fraction of the detection noise; 0.1 s of a robot
-  // turning at 2 rad/s at 1 m/s, by 10 mm); the one that has recently explained the detections better
-  // (exponentially weighted squared errors) predicts the uncommanded steps.
-  if (!params_.velocity_turns_with_robot || command_at(time_) != nullptr) {
-    anchor_.reset();
-    return;
-  }
-  if (!anchor_) return;
-  const double age = time::to_seconds(t_capture - anchor_time_);
-  if (age < params_.motion_model_horizon) return;
-  const double e_global = (detection.position - free_step(*anchor_, age, false, nullptr).head<2>()).squaredNorm();
-  const double e_local = (detection.position - free_step(*anchor_, age, true, nullptr).head<2>()).squaredNorm();
-  const double keep = params_.motion_model_memory;
-  turn_score_ = keep * turn_score_ + (1 - keep) * (e_local - e_global);
+  // one (its controller re-aims it). Both models predict alike over a frame (they share the acceleration
+  // state), but they differ in what they expect to stay constant: the acceleration in the field, or what
+  // is left of it without the centripetal part omega J v. The robot follows the one under which it
+  // accelerates less (exponentially weighted over motion_model_time_constant): holding a local velocity
+  // while turning at omega, its field acceleration is omega |v| and the rest zero; driving straight while
+  // turning, the other way round.
+  const double dt = time::to_seconds(t_capture - time_);
+  if (!params_.velocity_turns_with_robot || dt <= 0 || command_at(time_) != nullptr) return;
+  const State& x = filter_.state();
+  Eigen::Matrix2d perp;  // J: a quarter turn
+  perp << 0, -1, 1, 0;
+  const Vec2 a = x.segment<2>(6);
+  const Vec2 a_turning = a - x(5) * (perp * x.segment<2>(3));
+  const double keep = std::exp(-dt / params_.motion_model_time_constant);
+  turn_score_ = keep * turn_score_ + (1 - keep) * (a_turning.squaredNorm() - a.squaredNorm());
   turn_model_ = turn_score_ < 0;
-  anchor_.reset();
 }
 
 RobotFilter::UpdateResult RobotFilter::update(const RobotDetection& detection, time::Timestamp t_capture,
@@ -320,7 +346,7 @@ RobotFilter::UpdateResult RobotFilter::update(const RobotDetection& detection, t
   in_contact_ = false;
   const bool commanded = command_at(std::min(time_, t_capture)) != nullptr || command_at(t_capture) != nullptr;
   in_contact_ = in_contact && commanded;
-  score_motion_models(detection, t_capture);
+  score_motion_models(t_capture);
   // Gate: how far could the robot have got from the prediction?
   const double dt = time::to_seconds(t_capture - time_);
   const State predicted = predict_state(t_capture);
@@ -349,10 +375,6 @@ RobotFilter::UpdateResult RobotFilter::update(const RobotDetection& detection, t
   }
   if (dt > 0) time_ = t_capture;
   last_update_ = std::max(last_update_, t_capture);
-  if (!anchor_ && dt > 0 && !commanded) {
-    anchor_ = filter_.state();
-    anchor_time_ = t_capture;
-  }
   return UpdateResult::kFused;
 }
 
@@ -471,19 +493,18 @@ void RobotFilter::update_modes(const RobotDetection& detection, time::Timestamp 
   // fuses; the detection's likelihood under each prediction weighs the modes. Only the loosest mode
   // re-predicts beyond the maneuver gate (a collision): in the others a surprise is what moves the
   // probability to the loosest.
-  Filter::StateMatrix jacobian;
   Filter::StateMatrix jerk_noise;  // the free step's Q with a jerk density of 1, without its heading part
-  Filter::StateMatrix angular_noise = Filter::StateMatrix::Zero();  // the heading part (no jerk)
-  Eigen::Matrix<double, 8, 5> jacobian_offset;  // F - I in columns 3-7 (see below)
+  Filter::StateMatrix angular_noise;  // the heading part with a white angular acceleration of 1 rad/s^2
+  // The Jacobian is linear in the acceleration's decay factor (only the acceleration rows depend on it):
+  // F(decay) = F(0) + decay (F(1) - F(0)); each mode decays with its own time constant.
+  Filter::StateMatrix jacobian_kept;  // decay 1
+  Filter::StateMatrix jacobian_lost;  // decay 0
   if (dt > 0) {
-    step(filter_.state(), dt, nullptr, 1.0, &jacobian, &jerk_noise);
-    for (int r : {2, 5}) {
-      for (int c : {2, 5}) {
-        angular_noise(r, c) = jerk_noise(r, c);
-        jerk_noise(r, c) = 0;
-      }
-    }
-    jacobian_offset = jacobian.rightCols<5>() - Filter::StateMatrix::Identity().rightCols<5>();
+    step(filter_.state(), dt, nullptr, 1.0, nullptr, &jerk_noise);
+    jerk_noise -= heading_noise(filter_.state(), dt, params_.angular_acceleration_stddev, turn_model_);
+    angular_noise = heading_noise(filter_.state(), dt, 1.0, turn_model_);
+    free_step(filter_.state(), dt, turn_model_, 1.0, &jacobian_kept);
+    free_step(filter_.state(), dt, turn_model_, 0.0, &jacobian_lost);
   }
   std::array<double, kMaxModes> log_likelihood{};
   double best = -std::numeric_limits<double>::infinity();
@@ -507,7 +528,7 @@ void RobotFilter::update_modes(const RobotDetection& detection, time::Timestamp 
           p.row(k).setZero();
           p.col(k).setZero();
         }
-        p += angular_noise;
+        p += heading_noise(x, dt, params_.angular_acceleration_stddev, false);  // nothing else moves
         const double drift = params_.stationary_drift_stddev * params_.stationary_drift_stddev * dt;
         p(0, 0) += drift;
         p(1, 1) += drift;
@@ -518,23 +539,38 @@ void RobotFilter::update_modes(const RobotDetection& detection, time::Timestamp 
       continue;
     }
     const double jerk = params_.mode_jerk_stddev[j - first_jerk_mode];
+    const double angular = params_.mode_angular_acceleration_stddev[j - first_jerk_mode];
     const bool loosest = j + 1 == n;
     if (dt > 0) {
-      State x = free_step(mode.state(), dt, turn_model_, nullptr);
+      const double decay = decay_over(dt, params_.mode_acceleration_time_constant[j - first_jerk_mode]);
+      State x = free_step(mode.state(), dt, turn_model_, decay, nullptr);
       x(2) = wrap(x(2));
       mode.mutable_state() = x;
       // F = I + E with E non-zero only in columns 3-7 (in the free models nothing depends on position or
       // heading): F P F^T = G + G_{:,3:7} E_{:,3:7}^T with G = P + E_{:,3:7} P_{3:7,:}, 40 % fewer products.
       Filter::StateMatrix& p = mode.mutable_covariance();
-      const Eigen::Matrix<double, 8, 5>& e = jacobian_offset;
+      const Eigen::Matrix<double, 8, 5> e = jacobian_lost.rightCols<5>() +
+                                            decay * (jacobian_kept.rightCols<5>() - jacobian_lost.rightCols<5>()) -
+                                            Filter::StateMatrix::Identity().rightCols<5>();
       const Filter::StateMatrix g = p + e.lazyProduct(p.bottomRows<5>());
       p = g + g.rightCols<5>().lazyProduct(e.transpose());
       if (loosest) fpft = p;  // kept for a re-prediction
-      p += jerk * jerk * jerk_noise + angular_noise;
+      p += jerk * jerk * jerk_noise + angular * angular * angular_noise;
     }
     Innovation innovation = innovation_of(mode, detection, lag);
     if (loosest && dt > 0 && innovation.mahalanobis2 > params_.maneuver_gate) {
-      mode.mutable_covariance() = fpft + params_.maneuver_noise_scale * (jerk * jerk * jerk_noise + angular_noise);
+      // A collision: the velocity changed at once somewhere in the step (an impulse of spread
+      // collision_velocity_stddev at a uniform instant, not a lasting acceleration the velocity would
+      // overshoot with), the robot may have been spun.
+      Filter::StateMatrix& p = mode.mutable_covariance();
+      p = fpft + jerk * jerk * jerk_noise + params_.maneuver_noise_scale * angular * angular * angular_noise;
+      const double impulse = params_.collision_velocity_stddev * params_.collision_velocity_stddev;
+      for (int i = 0; i < 2; ++i) {
+        p(i, i) += dt * dt / 3 * impulse;
+        p(i, i + 3) += dt / 2 * impulse;
+        p(i + 3, i) += dt / 2 * impulse;
+        p(i + 3, i + 3) += impulse;
+      }
       innovation = innovation_of(mode, detection, lag);
     }
     log_likelihood[j] = fuse(mode, innovation);

@@ -9,17 +9,21 @@
 //    piece by piece, the command that was in force, not the newest one (detections are ~15 ms older
 //    than the newest command). The acceleration (ax, ay) is not part of this model (kept at 0, unknown).
 //  * UNCOMMANDED (enemies, or no fresh command): a Singer model, the field acceleration (ax, ay) is a
-//    state driven by white jerk that decays with acceleration_time_constant (accelerations do not last).
+//    state driven by white jerk that decays with a time constant (accelerations do not last).
 //    The acceleration either stays in the field (a controller that re-aims the robot's velocity) or, once
 //    its centripetal part omega x v is taken off, turns with the robot (it holds or smoothly changes a
-//    LOCAL velocity command: then the velocity itself turns with the robot); the one whose predictions over
-//    motion_model_horizon recently matched the detections better is used. Both mean the same state, so
-//    switching needs no conversion.
+//    LOCAL velocity command: then the velocity itself turns with the robot, and a heading that turns
+//    unexpectedly turns the velocity with it, so the heading detections steer the velocity's direction).
+//    The one under which the robot accelerates less (over motion_model_time_constant) is used: holding a
+//    local velocity while turning at omega, a robot's field acceleration is omega |v| and nothing is left
+//    in its own frame; driving straight while turning, it is the other way round. Both mean the same
+//    state, so switching needs no conversion.
 //    How hard the robot manoeuvres is not known either: an interacting multiple model (IMM) runs one
-//    filter per jerk density (mode_jerk_stddev: e.g. standing or gliding, steering, sprinting and
-//    braking), mixes them before each step (Markov switching at mode_switch_rate) and weighs them by how
-//    well each predicted the detection. A stationary mode (velocity zero, the position drifting a little)
-//    comes first: robots stand a lot in a match. A robot that stands or glides gets the smoothing of a
+//    filter per jerk density (mode_jerk_stddev: e.g. cruising, steering, sprinting and braking; each
+//    with its own angular acceleration and acceleration time constant), mixes them before each step
+//    (Markov switching at mode_switch_rate) and weighs them by how well each predicted the detection.
+//    A stationary mode (velocity zero, the position drifting a little) comes first: robots stand a lot
+//    in a match. A robot that stands or glides gets the smoothing of a
 //    near-constant model, one that brakes hard the agility of a loose one, without a compromise for both.
 //  * CONTACT (the world model says a commanded robot touches another robot or a wall): forces we do not
 //    know act on it, so commands are ignored, the velocity is constant and the process noise is higher.
@@ -57,20 +61,29 @@ struct RobotFilterParams {
   double gate_distance = 0.3;             // m, beyond prediction + max speed * dt: teleport candidate
   double max_speed = 5.0;                 // m/s, physical limit used by the gate
   double maneuver_gate = 16;              // chi-square (3 dof): beyond it the step is re-predicted ...
-  double maneuver_noise_scale = 50;       // ... with this many times the process noise variance
+  double maneuver_noise_scale = 50;       // ... with this many times the process noise variance (IMM:
+                                          // the loosest mode's angular part) ...
+  double collision_velocity_stddev = 0.6;  // m/s ... (IMM: the loosest mode) with a velocity impulse
   bool velocity_turns_with_robot = true;  // without a command, choose between a velocity (and acceleration)
-                                          // that turns with the robot and a field one by their recent errors
-  double motion_model_memory = 0.9;       // per comparison (every motion_model_horizon): weight of the past
+                                          // that turns with the robot and a field one: the one under which
+                                          // the robot recently accelerated less
+  double motion_model_time_constant = 0.3;  // s, that comparison's memory
   double contact_acceleration_stddev = 4.0;  // m/s^2, process noise while touching a robot or a wall
   double contact_angular_acceleration_stddev = 30;  // rad/s^2
   // m/s^3 per sqrt(Hz): white jerk densities of the uncommanded model, one IMM mode each (1 to
   // kMaxJerkModes, ascending; one value and no stationary mode: a single filter).
-  std::vector<double> mode_jerk_stddev = {0.02, 1.0, 12.0};
+  std::vector<double> mode_jerk_stddev = {0.3, 1.5, 12.0};
+  // rad/s^2: each of those modes' white angular acceleration (as many values; a robot that drives smoothly
+  // mostly turns smoothly too). The stationary mode and a single filter use angular_acceleration_stddev.
+  std::vector<double> mode_angular_acceleration_stddev = {5, 10, 20};
+  // s: each of those modes' acceleration time constant (as many values; 0: held): a cruising robot's
+  // acceleration lasts, a braking or bumped one's does not. A single filter uses acceleration_time_constant.
+  std::vector<double> mode_acceleration_time_constant = {1.0, 0.5, 0.3};
   bool stationary_mode = true;              // one more IMM mode: the robot stands (velocity zero) ...
   double stationary_drift_stddev = 0.0005;  // m per sqrt(s) ... its position drifts this much (pushed)
   double mode_switch_rate = 0.2;            // 1/s: expected switches between the modes
-  double acceleration_time_constant = 0.5;  // s, without a command the acceleration decays so (0: held)
-  double motion_model_horizon = 0.1;  // s: the two uncommanded models are compared over this long
+  double acceleration_time_constant = 0.5;  // s, without a command the acceleration decays so (0: held;
+                                            // a single filter, the published prediction)
 };
 
 class RobotFilter {
@@ -144,14 +157,19 @@ class RobotFilter {
   /// update, the mode probabilities, and the combined estimate into filter_.
   void update_modes(const RobotDetection& detection, time::Timestamp t_capture);
   /// The uncommanded (Singer) step over dt > 0, the acceleration held in the field or, without its
-  /// centripetal part, turning with the robot; its Jacobian into `jacobian` when given.
-  State free_step(const State& x, double dt, bool turning, Filter::StateMatrix* jacobian) const;
+  /// centripetal part, turning with the robot, `decay` of it left after dt; its Jacobian into `jacobian`
+  /// when given.
+  static State free_step(const State& x, double dt, bool turning, double decay, Filter::StateMatrix* jacobian);
+  /// Process noise of a white angular acceleration (rad/s^2) over dt at state x, on the heading and turn
+  /// rate; with `turning` also on what turns with them: the velocity and the acceleration.
+  static Filter::StateMatrix heading_noise(const State& x, double dt, double angular_stddev, bool turning);
   /// The command in force at t, nullptr when none (never sent, expired, or in contact).
   const RobotCommand* command_at(time::Timestamp t) const;
   /// The first command change strictly inside (from, to), or `to`.
   time::Timestamp next_command_change(time::Timestamp from, time::Timestamp to) const;
   void reset(const RobotDetection& detection, time::Timestamp t_capture);
-  void score_motion_models(const RobotDetection& detection, time::Timestamp t_capture);
+  /// Before an uncommanded step to t_capture: which of the two models the robot follows (see the header).
+  void score_motion_models(time::Timestamp t_capture);
 
   RobotFilterParams params_;
   DetectionNoise noise_;         // of the detection being fused
@@ -162,17 +180,13 @@ class RobotFilter {
   bool modes_stale_ = true;      // filter_ moved without the modes (commanded step, reset): restart them
   double noise_scale_ = 1;       // process noise variance factor of the current prediction
   bool in_contact_ = false;      // touching a robot or a wall: commands are not trusted (see update())
-  double turn_score_ = 0;        // > 0: the constant-velocity model explained recent detections better
+  double turn_score_ = 0;        // smoothed |a - w J v|^2 - |a|^2 (m^2/s^4); < 0: turning model
   bool turn_model_ = false;      // predict uncommanded steps with the turning-velocity model
   time::Timestamp time_;         // vision clock of the filter state
   time::Timestamp last_update_;  // capture time of the last fused detection
   static constexpr std::size_t kCommandHistory = 8;  // 80 ms at 100 Hz: covers the vision delay
   std::array<TimedCommand, kCommandHistory> commands_{};  // ring, oldest overwritten
   std::size_t command_count_ = 0;                        // commands ever recorded
-  // The motion models' comparison: the estimate at anchor_time_, predicted by both to a detection
-  // motion_model_horizon later (one step's predictions differ by far less than the detection noise).
-  std::optional<State> anchor_;
-  time::Timestamp anchor_time_;
   std::optional<Vec2> teleport_candidate_;
   time::Timestamp teleport_candidate_time_;
 };
