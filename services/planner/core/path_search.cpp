@@ -353,9 +353,12 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
     firsts.reserve(firsts.size() + vias);
     std::vector<ViaCandidate> sampled;
     sampled.reserve(vias * params.switch_times.size());
+    std::vector<std::pair<std::size_t, Vec2>> sampled_vias;  // (index in firsts, sub-destination)
+    sampled_vias.reserve(vias);
     const auto through = [&](const Vec2& via) {
       if (!usable_via(via)) return;
       firsts.push_back(Trajectory2D::plan(position, velocity, via, limits));
+      sampled_vias.emplace_back(firsts.size() - 1, via);
       for (const double switch_time : params.switch_times) {
         sampled.push_back(via_candidate(firsts.size() - 1, via, switch_time, false));
         if (switch_time >= firsts.back().duration()) break;
@@ -373,13 +376,26 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
         through(destination + radius * Vec2(std::cos(angle), std::sin(angle)));
       }
     }
-    // Best bound first: a good path found early leaves the others unplanned, and once one cannot win, none
-    // after it can.
-    std::sort(sampled.begin(), sampled.end(), [](const ViaCandidate& a, const ViaCandidate& b) {
-      return std::pair(a.bound, a.index) < std::pair(b.bound, b.index);
-    });
-    for (const ViaCandidate& c : sampled) {
-      if (!consider_via(c)) break;
+    const auto consider_in_order = [&](std::vector<ViaCandidate>& candidates) {
+      // Best bound first: a good path found early leaves the others unplanned, and once one cannot win,
+      // none after it can.
+      std::sort(candidates.begin(), candidates.end(), [](const ViaCandidate& a, const ViaCandidate& b) {
+        return std::pair(a.bound, a.index) < std::pair(b.bound, b.index);
+      });
+      for (const ViaCandidate& c : candidates) {
+        if (!consider_via(c)) break;
+      }
+    };
+    consider_in_order(sampled);
+    if (best.first_collision && !params.late_switch_times.empty()) {
+      sampled.clear();
+      for (const auto& [first, via] : sampled_vias) {
+        for (const double switch_time : params.late_switch_times) {
+          if (switch_time >= firsts[first].duration()) break;  // its arrival is a candidate already
+          sampled.push_back(via_candidate(first, via, switch_time, false));
+        }
+      }
+      consider_in_order(sampled);
     }
   }
   return best;

@@ -108,6 +108,11 @@ struct PathSearchParams {
   // the robot.
   std::vector<double> destination_radii = {0.4};
   std::vector<double> switch_times = {0.2, 0.5};    // s along the first trajectory
+  // s: switches further out, tried only when every path above collides: the way round a wide obstacle
+  // beside another (the centre circle at their kickoff, a robot above it) leaves the sub-destination late.
+  // Not among the first tries: a late switch also wins where a nearer one is free and nearly as quick,
+  // and changes what the robot does there.
+  std::vector<double> late_switch_times = {1.0};
   double step = 0.1;  // s between collision checks (swept chords; obstacles grown by a * step^2 / 8 to cover the curve)
   double horizon = 3.0;                             // s: collisions later than this are not looked for
   // A colliding path's score grows by collision_penalty, plus early_collision_weight per second by which
