@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numbers>
 #include <random>
 
 #include "libs/geometry/contains.h"
@@ -56,6 +57,28 @@ TEST(PathSearch, ARobotOnTheWayIsGoneAround) {
   EXPECT_EQ(result.path.position(result.path.duration()), Vec2(2, 0));
   const double direct = Trajectory2D::plan({-2, 0}, Vec2::Zero(), {2, 0}, kLimits).duration();
   EXPECT_LT(result.path.duration(), direct + 1.0) << "a small detour";
+}
+
+TEST(PathSearch, TheWayRoundTheCentreCircleAndARobotBesideItIsFoundFromTheWrongHalf) {
+  // Seen in a whole match: their kickoff after half time, one of ours still in their half at (1.15, 1.17),
+  // its place at (-0.79, 0) behind the centre circle (the ball's keep-out, 0.64 m for robot centres), one
+  // of theirs standing at (0.35, 1.2) above the circle. Going round both takes a sub-destination about a
+  // metre out: with switches only within 0.5 s every path collides (on one of the two ring offsets) and the
+  // robot dithered for 10 s.
+  PathObstacles obstacles;
+  obstacles.circles.push_back({.position = {0, 0}, .radius = 0.64});
+  obstacles.circles.push_back({.position = {0.35, 1.2}, .radius = kTwoRobots + 0.05});
+  obstacles.circles.push_back({.position = {-0.59, 0.79}, .radius = kTwoRobots + 0.03});
+  for (const double offset : {0.0, std::numbers::pi / 8}) {
+    const PathResult result = search_path({1.15, 1.17}, Vec2::Zero(), {-0.79, 0}, kLimits, obstacles,
+                                          {.directions = 8, .direction_offset = offset});
+    EXPECT_FALSE(result.first_collision) << "offset " << offset << ": collides after " << *result.first_collision << " s";
+    EXPECT_GE(dense_clearance(result.path, obstacles, 10), 0.0) << "offset " << offset;
+  }
+  const PathResult early_only = search_path({1.15, 1.17}, Vec2::Zero(), {-0.79, 0}, kLimits, obstacles,
+                                            {.directions = 8, .direction_offset = std::numbers::pi / 8,
+                                             .late_switch_times = {}});
+  EXPECT_TRUE(early_only.first_collision) << "the scene needs the late switches";
 }
 
 TEST(PathSearch, AFastRobotCannotJumpOverAnObstacleBetweenTwoChecks) {
