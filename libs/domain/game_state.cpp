@@ -1,5 +1,7 @@
 #include "libs/domain/game_state.h"
 
+#include <algorithm>
+
 namespace ssl::wm {
 
 void GameState::set_restart(Restart restart, TeamColor team, bool ready) {
@@ -8,8 +10,24 @@ void GameState::set_restart(Restart restart, TeamColor team, bool ready) {
   pending_ = true;
   ready_ = ready;
   playing_ = false;
-  ball_at_ready_ = ready ? last_ball_ : std::nullopt;
+  ball_at_ready_ = ready ? ball_at_rest() : std::nullopt;
   moved_since_.reset();
+}
+
+std::optional<Vec2> GameState::ball_at_rest() const {
+  const std::size_t n = std::min(recent_count_, kReadySamples);
+  if (n == 0) return last_ball_;
+  std::array<double, kReadySamples> x{};
+  std::array<double, kReadySamples> y{};
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = recent_balls_[i].x();
+    y[i] = recent_balls_[i].y();
+  }
+  const auto median = [n](std::array<double, kReadySamples>& v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n / 2), v.begin() + static_cast<std::ptrdiff_t>(n));
+    return v[n / 2];
+  };
+  return Vec2(median(x), median(y));
 }
 
 void GameState::update(const RefereeInfo& referee, const TeamFrame& frame, const std::optional<Vec2>& ball) {
@@ -43,7 +61,7 @@ void GameState::update(const RefereeInfo& referee, const TeamFrame& frame, const
     case C::kNormalStart:
       if (pending_ && (restart_ == Restart::kKickoff || restart_ == Restart::kPenalty)) {
         ready_ = true;
-        ball_at_ready_ = last_ball_;
+        ball_at_ready_ = ball_at_rest();
         moved_since_.reset();
       } else {
         restart_ = Restart::kNone;
@@ -71,10 +89,12 @@ void GameState::update(const RefereeInfo& referee, const TeamFrame& frame, const
     case C::kBallPlacementBlue: set_restart(Restart::kBallPlacement, kB, false); break;
   }
   if (!is_ball_placement()) placement_team_.reset();
+  recent_count_ = 0;  // the next restart's ball is where it rests after this command
 }
 
 void GameState::update_ball(const Vec2& ball, time::Timestamp now) {
   last_ball_ = ball;
+  recent_balls_[recent_count_++ % kReadySamples] = ball;
   if (!ready_) return;
   if (!ball_at_ready_) {
     ball_at_ready_ = ball;

@@ -9,6 +9,10 @@
 // became ready for kBallMovedHold: a kicked ball moves on, while a jump of the estimate for a frame or two
 // (its velocity spiking while robots crowd or pass the ball) is no kick. Playing on such a jump was a
 // keep-out foul at their restarts and handed our own restart's pass to the strategy before the kick.
+// Where the ball was is the median of the last kReadySamples positions since the command before (the ball
+// resting at the restart's spot; without any, the last ball known), for the same reason: a spike at the
+// moment of NORMAL_START (predicted 9 cm off for a few frames) made the ball at rest count as moved, our
+// kickoff was handed to the strategy and a second robot touched the ball.
 // FORCE_START is play at once; STOP, HALT, TIMEOUT, GOAL and BALL_PLACEMENT clear it.
 //
 //   GameState game(TeamColor::kBlue);
@@ -16,6 +20,8 @@
 //   if (game.is_our_kickoff() && game.is_setup()) go_to_kickoff_positions();
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <optional>
 
 #include "libs/common/team.h"
@@ -31,6 +37,7 @@ class GameState {
  public:
   static constexpr double kBallMovedDistance = 0.05;  // m, rules 5.4: the ball is in play after 0.05 m
   static constexpr double kBallMovedHold = 0.05;      // s it stays beyond that before we play on
+  static constexpr std::size_t kReadySamples = 9;     // update_ball() positions the reference is the median of
 
   explicit GameState(TeamColor us = TeamColor::kBlue) : us_(us) {}
 
@@ -90,6 +97,9 @@ class GameState {
 
  private:
   void set_restart(Restart restart, TeamColor team, bool ready);
+  /// The median (per axis) of the update_ball() positions since the last command (the last kReadySamples),
+  /// else the last ball known.
+  std::optional<Vec2> ball_at_rest() const;
 
   TeamColor us_;
   RefereeCommand command_ = RefereeCommand::kHalt;
@@ -103,6 +113,8 @@ class GameState {
   std::optional<Vec2> ball_at_ready_;  // vision frame
   std::optional<time::Timestamp> moved_since_;  // the ball beyond kBallMovedDistance since
   std::optional<Vec2> last_ball_;      // vision frame
+  std::array<Vec2, kReadySamples> recent_balls_{};  // ring of update_ball() positions, vision frame
+  std::size_t recent_count_ = 0;                    // positions put in it since the last command
   std::optional<Vec2> placement_team_;
   std::uint32_t our_goalkeeper_ = 0;
   std::uint32_t their_goalkeeper_ = 0;

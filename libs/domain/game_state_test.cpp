@@ -128,6 +128,29 @@ TEST(WorldModelGameState, ARestartIsTakenOnlyOnceTheBallStaysMovedNotOnAJumpOfIt
   EXPECT_FALSE(f.game.must_keep_distance_from_ball());
 }
 
+TEST(WorldModelGameState, AJumpOfTheEstimateAtNormalStartDoesNotMoveWhereTheBallWas) {
+  // Seen in a match: the ball at rest on the centre mark, its estimate (predicted to now) 9 cm off for three
+  // ticks just as NORMAL_START came; the ball staying where it was then looked like a taken kickoff.
+  Fixture f(TeamColor::kBlue);
+  const auto at = [](double s) { return kKick + time::duration_from_seconds(s); };
+  f.send(C::kStop);
+  f.send(C::kPrepareKickoffBlue);
+  for (int i = 0; i < 20; ++i) f.game.update_ball({0.0, 0.0}, at(-0.3 + 0.01 * i));
+  f.game.update_ball({0.0, -0.09}, at(-0.02));
+  f.game.update_ball({0.0, -0.09}, at(-0.01));
+  f.ball = Vec2(0.0, -0.09);
+  f.send(C::kNormalStart);
+  ASSERT_TRUE(f.game.is_ready());
+  f.game.update_ball({0.0, -0.09}, at(0.0));
+  for (int i = 1; i <= 30; ++i) f.game.update_ball({0.0, 0.0}, at(0.01 * i));
+  EXPECT_TRUE(f.game.is_our_kickoff()) << "the kickoff is still to be taken";
+  EXPECT_FALSE(f.game.is_playing());
+  // Kicked: in play once beyond 5 cm of the centre mark for the hold.
+  f.game.update_ball({0.2, 0.0}, at(1.0));
+  f.game.update_ball({0.4, 0.0}, at(1.0 + GameState::kBallMovedHold));
+  EXPECT_TRUE(f.game.is_playing());
+}
+
 TEST(WorldModelGameState, APenaltyIsInPlayFromItsKickUntilTheNextCommand) {
   const auto at = [](double s) { return kKick + time::duration_from_seconds(s); };
   for (const TeamColor us : {TeamColor::kBlue, TeamColor::kYellow}) {
