@@ -391,7 +391,9 @@ PathResult search_path(const Vec2& position, const Vec2& velocity, const Vec2& d
       sampled.clear();
       for (const auto& [first, via] : sampled_vias) {
         for (const double switch_time : params.late_switch_times) {
-          if (switch_time >= firsts[first].duration()) break;  // its arrival is a candidate already
+          // Late switches branch off a first trajectory still under way (on arrival was tried, if at all,
+          // with the first switches).
+          if (switch_time >= firsts[first].duration()) break;
           sampled.push_back(via_candidate(first, via, switch_time, false));
         }
       }
