@@ -24,8 +24,9 @@ std::optional<Vec2> GameState::ball_at_rest() const {
     y[i] = recent_balls_[i].y();
   }
   const auto median = [n](std::array<double, kReadySamples>& v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n / 2), v.begin() + static_cast<std::ptrdiff_t>(n));
-    return v[n / 2];
+    const auto middle = v.begin() + static_cast<std::ptrdiff_t>(n / 2);
+    std::nth_element(v.begin(), middle, v.begin() + static_cast<std::ptrdiff_t>(n));
+    return *middle;
   };
   return Vec2(median(x), median(y));
 }

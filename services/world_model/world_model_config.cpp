@@ -31,7 +31,8 @@ Fields<RobotFilterParams> robot_fields() {
       field("stationary_drift_stddev", &RobotFilterParams::stationary_drift_stddev).unit("m/sqrt(s)")
           .range(1e-6, 1).doc("how far a standing robot's position may drift (pushed)"),
       field("acceleration_time_constant", &RobotFilterParams::acceleration_time_constant).unit("s")
-          .range(0, 100).doc("a single filter's acceleration decays with it (0: held); also the published prediction's"),
+          .range(0, 100)
+          .doc("a single filter's acceleration decays with it (0: held); also the published prediction's"),
       field("commanded_acceleration_stddev", &RobotFilterParams::commanded_acceleration_stddev)
           .unit("m/s^2").range(0.01, 100).doc("process noise while following our command"),
       field("angular_acceleration_stddev", &RobotFilterParams::angular_acceleration_stddev)

@@ -72,7 +72,8 @@ TEST(PathSearch, TheWayRoundTheCentreCircleAndARobotBesideItIsFoundFromTheWrongH
   for (const double offset : {0.0, std::numbers::pi / 8}) {
     const PathResult result = search_path({1.15, 1.17}, Vec2::Zero(), {-0.79, 0}, kLimits, obstacles,
                                           {.directions = 8, .direction_offset = offset});
-    EXPECT_FALSE(result.first_collision) << "offset " << offset << ": collides after " << *result.first_collision << " s";
+    EXPECT_FALSE(result.first_collision)
+        << "offset " << offset << ": collides after " << result.first_collision.value_or(0) << " s";
     EXPECT_GE(dense_clearance(result.path, obstacles, 10), 0.0) << "offset " << offset;
   }
   const PathResult early_only = search_path({1.15, 1.17}, Vec2::Zero(), {-0.79, 0}, kLimits, obstacles,

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "libs/geometry/angle.h"
+#include "libs/geometry/vec2.h"
 
 namespace ssl::wm {
 namespace {
@@ -165,11 +166,9 @@ RobotFilter::Filter::StateMatrix RobotFilter::heading_noise(const State& x, doub
   Eigen::Matrix<double, 8, 2> g = Eigen::Matrix<double, 8, 2>::Zero();
   g(2, 0) = g(5, 1) = 1;
   if (turning) {
-    Eigen::Matrix2d perp;  // J: a quarter turn
-    perp << 0, -1, 1, 0;
-    g.block<2, 1>(3, 0) = perp * x.segment<2>(3);
-    g.block<2, 1>(6, 0) = perp * x.segment<2>(6);
-    g.block<2, 1>(6, 1) = perp * x.segment<2>(3);
+    g.block<2, 1>(3, 0) = geom::perpendicular(x.segment<2>(3));
+    g.block<2, 1>(6, 0) = geom::perpendicular(x.segment<2>(6));
+    g.block<2, 1>(6, 1) = geom::perpendicular(x.segment<2>(3));
   }
   const Eigen::Matrix<double, 8, 2> gq = g.lazyProduct(q);
   return gq.lazyProduct(g.transpose());
@@ -329,10 +328,8 @@ void RobotFilter::score_motion_models(time::Timestamp t_capture) {
   const double dt = time::to_seconds(t_capture - time_);
   if (!params_.velocity_turns_with_robot || dt <= 0 || command_at(time_) != nullptr) return;
   const State& x = filter_.state();
-  Eigen::Matrix2d perp;  // J: a quarter turn
-  perp << 0, -1, 1, 0;
   const Vec2 a = x.segment<2>(6);
-  const Vec2 a_turning = a - x(5) * (perp * x.segment<2>(3));
+  const Vec2 a_turning = a - x(5) * geom::perpendicular(x.segment<2>(3));
   const double keep = std::exp(-dt / params_.motion_model_time_constant);
   turn_score_ = keep * turn_score_ + (1 - keep) * (a_turning.squaredNorm() - a.squaredNorm());
   turn_model_ = turn_score_ < 0;
