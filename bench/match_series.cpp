@@ -16,7 +16,10 @@
 // Over 20 seeds or more of base against ball_chaser it also prints the figures of the design's play-quality
 // budgets as BUDGET lines (goal margin, passes completed, avoidable fouls; ./ssl bench's table).
 //
+// The conditions (--conditions, PlannedMatch's Conditions) default to realistic: the budgets hold there.
+//
 //   build/bench/match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...] [--tactics]
+//                            [--conditions ideal|realistic|harsh]
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -46,6 +49,7 @@ using ssl::planner::FreeKickPlay;
 using ssl::planner::KickoffPlay;
 using ssl::planner::PenaltyPlay;
 using ssl::planner::Strategy;
+using ssl::planner::testing::Conditions;
 using ssl::planner::testing::PlannedMatch;
 using ssl::referee::GameEventType;
 
@@ -141,7 +145,7 @@ class KickIntents {
 };
 
 /// One match, in this (child) process: its report as JSON, plus which colour strategy A played.
-std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
+std::string play(const Pairing& pairing, std::uint64_t seed, double half, Conditions conditions) {
   auto profile = ssl::planner::testing::unattended_strict_ai(half);
   if (!profile) {
     std::fprintf(stderr, "match_series: %s\n", profile.error().message.c_str());
@@ -151,7 +155,8 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
   const Side a = *side_named(pairing.a);
   const Side b = *side_named(pairing.b);
   const ssl::sim::FieldGeometry field = ssl::sim::FieldGeometry::division_b();
-  PlannedMatch match({.field = field,
+  PlannedMatch match({.conditions = conditions,
+                      .field = field,
                       .robots = 6,
                       .seed = seed,
                       .referee = *profile,
@@ -199,14 +204,15 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half) {
 }
 
 /// Runs `play` in a child process; its JSON line, or nullopt when it failed.
-std::optional<std::string> play_in_child(const Pairing& pairing, std::uint64_t seed, double half) {
+std::optional<std::string> play_in_child(const Pairing& pairing, std::uint64_t seed, double half,
+                                         Conditions conditions) {
   int fds[2];
   if (pipe(fds) != 0) return std::nullopt;
   const pid_t pid = fork();
   if (pid < 0) return std::nullopt;
   if (pid == 0) {
     close(fds[0]);
-    const std::string line = play(pairing, seed, half) + "\n";
+    const std::string line = play(pairing, seed, half, conditions) + "\n";
     std::size_t written = 0;
     while (written < line.size()) {
       const ssize_t n = write(fds[1], line.data() + written, line.size() - written);
@@ -382,6 +388,7 @@ int main(int argc, char** argv) {
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   std::vector<Pairing> pairings;
   bool print_tactics = false;
+  Conditions conditions = Conditions::kRealistic;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const auto value = [&]() -> std::string {
@@ -400,13 +407,16 @@ int main(int argc, char** argv) {
     if (arg == "--help") {
       std::printf(
           "usage: match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...] [--tactics]\n"
+          "                    [--conditions ideal|realistic|harsh]\n"
           "  plays N seeded whole 6 v 6 matches (default 20; seeds S, S+1, ...) per pairing of strategies (base,\n"
           "  base+redirect: base with the free-kick set play, base+kickoff_shot: kickoffs shot straight,\n"
           "  base+penalty_shot: penalties shot from the mark, or several: base+redirect+kickoff_shot; ball_chaser,\n"
           "  wander; default base:ball_chaser and base:base) in lockstep under the strict_ai rules,\n"
           "  halves of --half s of playing time (default 300), J matches at a time (default: the cores), and\n"
           "  prints goals, passes, shots, possession and game events per strategy and match, and the budgets'\n"
-          "  figures; --tactics: also the share of each role/tactic in normal play\n");
+          "  figures; --tactics: also the share of each role/tactic in normal play; --conditions: what the\n"
+          "  robots and the referee are like (PlannedMatch's Conditions; default realistic: about 40 ms from camera\n"
+          "  to wheels, lagging velocity, robots that differ, the referee sees vision)\n");
       return 0;
     }
     if (arg == "--tactics") {
@@ -417,6 +427,10 @@ int main(int argc, char** argv) {
       first_seed = static_cast<std::uint64_t>(number(0, 1e15));
     } else if (arg == "--half") {
       half = number(1, 3600);
+    } else if (arg == "--conditions") {
+      const std::optional<Conditions> named = ssl::planner::testing::conditions_named(value());
+      if (!named) usage_error("--conditions takes ideal, realistic or harsh");
+      conditions = *named;
     } else if (arg == "--jobs") {
       jobs = static_cast<unsigned>(number(1, 256));
     } else if (arg == "--pairing") {
@@ -437,8 +451,9 @@ int main(int argc, char** argv) {
     for (std::uint64_t s = 0; s < seeds; ++s) queue.push_back({p, first_seed + s});
   }
   std::printf("match series: %zu pairings x %llu seeds of 6 v 6 (division B), halves of %.0f s, strict_ai rules "
-              "(auto continue, no early end or extra time), %u at a time\n",
-              pairings.size(), static_cast<unsigned long long>(seeds), half, jobs);
+              "(auto continue, no early end or extra time), conditions %s, %u at a time\n",
+              pairings.size(), static_cast<unsigned long long>(seeds), half, ssl::planner::testing::to_string(conditions),
+              jobs);
   std::fflush(stdout);
   std::vector<std::vector<nlohmann::json>> results(pairings.size());
   std::mutex results_mutex;
@@ -450,7 +465,7 @@ int main(int argc, char** argv) {
     workers.emplace_back([&] {
       for (std::size_t j = next++; j < queue.size(); j = next++) {
         const Job& job = queue[j];
-        const std::optional<std::string> line = play_in_child(pairings[job.pairing], job.seed, half);
+        const std::optional<std::string> line = play_in_child(pairings[job.pairing], job.seed, half, conditions);
         std::lock_guard lock(results_mutex);
         if (!line) {
           ++failed;

@@ -171,6 +171,7 @@ struct WorldState {
   Possession possession = Possession::kNone;
   std::optional<std::uint32_t> possessing_robot;  // robot of the possessing (or last touching) team
   bool flipped = false;               // the team frame is the vision frame turned by pi
+  std::optional<double> command_delay;  // s, our robots' measured delay from command to motion
 };
 
 }  // namespace ssl::wm

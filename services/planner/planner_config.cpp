@@ -42,6 +42,9 @@ Fields<PlannerConfig> core_fields() {
                "running with it, shot from close in) or shot (from the mark)"),
       field("actuation_latency", &PlannerConfig::actuation_latency).unit("s").range(0, 0.2)
           .doc("from a tick until its command acts on the robot; trajectories plan from where the robot will be"),
+      config::optional_field("measured_latency", &PlannerConfig::measured_latency, true)
+          .doc("plan with world.state's command_delay (world_model measures it) instead of actuation_latency "
+               "once it is known"),
       field("robot_radius", &PlannerConfig::robot_radius).unit("m").range(0.05, 0.2),
       field("stop_speed", &PlannerConfig::stop_speed).unit("m/s").range(0.1, rules::kStopMaxSpeed)
           .doc("the rules' limit during STOP or below"),

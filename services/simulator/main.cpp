@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   add_key_flag(app, flags, "--division", "division", "field: a or b");
   add_key_flag(app, flags, "--robots", "robots_per_team", "robots per team at start (0..16)");
   add_key_flag(app, flags, "--realism", "realism", "none, realistic or competition");
+  add_key_flag(app, flags, "--robot-response", "robot_response",
+               "ideal, realistic or harsh: command delay, loss, velocity lag, per-robot limits");
   add_key_flag(app, flags, "--seed", "seed", "random seed of the vision noise");
   add_key_flag(app, flags, "--mode", "mode", "realtime, fast or lockstep");
   add_key_flag(app, flags, "--vision-port", "network.vision_port", "vision multicast port (group 224.5.23.2)");

@@ -68,6 +68,11 @@ Fields<SimulatorConfig> simulator_fields() {
           .values({{"none", RealismProfile::kNone},
                    {"realistic", RealismProfile::kRealistic},
                    {"competition", RealismProfile::kCompetition}}),
+      field("robot_response", &SimulatorConfig::robot_response)
+          .values({{"ideal", ResponseProfile::kIdeal},
+                   {"realistic", ResponseProfile::kRealistic},
+                   {"harsh", ResponseProfile::kHarsh}})
+          .doc("how robots answer commands: delay, loss, velocity lag, per-robot limits (robot_response.h)"),
       field("loop_rate", &SimulatorConfig::loop_rate).unit("Hz").range(10, 5000)
           .doc("iterations per second of the real-time loop"),
       field("fast_step", &SimulatorConfig::fast_step).unit("s").range(0.0001, 0.1)
@@ -99,6 +104,15 @@ RealismConfig realism_of(RealismProfile profile) {
   return RealismConfig::none();
 }
 
+RobotResponse response_of(ResponseProfile profile) {
+  switch (profile) {
+    case ResponseProfile::kIdeal: return RobotResponse::ideal();
+    case ResponseProfile::kRealistic: return RobotResponse::realistic();
+    case ResponseProfile::kHarsh: return RobotResponse::harsh();
+  }
+  return RobotResponse::ideal();
+}
+
 }  // namespace
 
 Result<SimulatorConfig> load_simulator_config(std::span<const std::string> files, const std::vector<std::string>& overrides) {
@@ -120,6 +134,7 @@ SimulatorOptions simulator_options(const SimulatorConfig& config) {
   options.vision.camera_height = config.cameras.height;
   options.vision.geometry_every_frames = static_cast<std::uint32_t>(config.cameras.geometry_every_frames);
   options.vision.realism = realism_of(config.realism);
+  options.response = response_of(config.robot_response);
   options.blue_spec = config.blue;
   options.yellow_spec = config.yellow;
   options.vision.max_robot_radius = std::max(config.blue.radius, config.yellow.radius);

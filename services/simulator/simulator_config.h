@@ -16,6 +16,7 @@ namespace ssl::sim {
 
 enum class Mode { kRealtime, kFast, kLockstep };
 enum class RealismProfile { kNone, kRealistic, kCompetition };
+enum class ResponseProfile { kIdeal, kRealistic, kHarsh };  // RobotResponse's profiles
 
 struct NetworkConfig {
   std::string bind_address;        // where the protocol ports listen
@@ -42,6 +43,7 @@ struct SimulatorConfig {
   std::uint64_t seed = 0;
   Mode mode = Mode::kRealtime;
   RealismProfile realism = RealismProfile::kRealistic;
+  ResponseProfile robot_response = ResponseProfile::kRealistic;
   double loop_rate = 0;            // Hz, iterations of the real-time loop
   double fast_step = 0;            // s of simulated time per iteration in fast mode
   double command_timeout = 0;      // s (simulated) without a command after which a robot stops; 0: never

@@ -135,6 +135,27 @@ Fields<DetectionNoiseParams> detection_noise_fields() {
   };
 }
 
+Fields<CommandDelayParams> command_delay_fields() {
+  return {
+      field("estimate", &CommandDelayParams::estimate)
+          .doc("measure our robots' delay from command to motion (false: robot.command_delay, the planner's own)"),
+      field("min_delay", &CommandDelayParams::min_delay).unit("s").range(0, 1),
+      field("max_delay", &CommandDelayParams::max_delay).unit("s").range(0.01, 1).doc("the candidates' range"),
+      field("resolution", &CommandDelayParams::resolution).unit("s").range(0.001, 0.1),
+      field("window", &CommandDelayParams::window).unit("s").range(0.1, 10).doc("motion replayed per evaluation"),
+      field("evaluation_period", &CommandDelayParams::evaluation_period).unit("s").range(0.01, 10),
+      field("memory", &CommandDelayParams::memory).unit("s").range(0.1, 600)
+          .doc("how long past evaluations count (exponential)"),
+      field("velocity_span", &CommandDelayParams::velocity_span).unit("s").range(0.02, 0.5)
+          .doc("detections around an instant for its measured velocity"),
+      field("max_acceleration", &CommandDelayParams::max_acceleration).unit("m/s^2").range(0.1, 20),
+      field("command_timeout", &CommandDelayParams::command_timeout).unit("s").range(0.01, 10),
+      field("min_excitation", &CommandDelayParams::min_excitation).unit("m/s").range(0, 10)
+          .doc("a robot's commands must change this much within a window to count"),
+      field("min_weight", &CommandDelayParams::min_weight).range(0, 1e6).doc("samples before an estimate is given"),
+  };
+}
+
 Fields<WorldModelConfig> core_fields() {
   return {
       field("carried_ball_after", &WorldModelConfig::carried_ball_after).unit("s").range(0, 1)
@@ -148,6 +169,7 @@ Fields<WorldModelConfig> core_fields() {
       nested("camera_alignment", &WorldModelConfig::camera_alignment, camera_alignment_fields()),
       nested("robot", &WorldModelConfig::robot, robot_fields()),
       nested("detection_noise", &WorldModelConfig::detection_noise, detection_noise_fields()),
+      nested("command_delay", &WorldModelConfig::command_delay, command_delay_fields()),
       nested("ball", &WorldModelConfig::ball, ball_fields()),
       nested("ball_model", &WorldModelConfig::ball_model, ball_model_fields()),
       field("min_confidence", &WorldModelConfig::min_confidence).range(0, 1),
@@ -160,6 +182,8 @@ Fields<WorldModelConfig> core_fields() {
       field("possession_distance", &WorldModelConfig::possession_distance).unit("m").range(0, 0.5),
       field("near_robot_distance", &WorldModelConfig::near_robot_distance).unit("m").range(0, 1),
       field("dribbler_capture_distance", &WorldModelConfig::dribbler_capture_distance).unit("m").range(0, 1),
+      field("vision_clock_slowness", &WorldModelConfig::vision_clock_slowness).unit("s/s").range(0, 0.5)
+          .doc("how much slower than this host's clock the vision clock may run (grSim stamps simulated time)"),
       field("contact_margin", &WorldModelConfig::contact_margin).unit("m").range(0, 0.5)
           .doc("robots this close to touching (or a wall) do not trust their commands"),
   };

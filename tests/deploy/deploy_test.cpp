@@ -400,7 +400,7 @@ TEST(Install, TheInstalledServicesReadTheInstalledConfigsAndSites) {
   write_text(config, text);
 
   const fs::path gateway = prefix.path / "opt/ssl-stack/bin/vision_gateway";
-  for (const auto& [site, port] : std::vector<std::pair<std::string, std::string>>{{"sim", "10020"}, {"field", "10006"}}) {
+  for (const auto& [site, port] : std::vector<std::pair<std::string, std::string>>{{"sim", "10020"}, {"grsim", "10020"}, {"field", "10006"}}) {
     auto child = ChildProcess::start(gateway, {"--print-config", "--site", site});
     ASSERT_TRUE(child) << child.error().message;
     std::string printed;
@@ -417,7 +417,7 @@ TEST(Install, TheInstalledServicesReadTheInstalledConfigsAndSites) {
     std::string out;
     while (auto line = wrong->read_line(1s)) out += *line;
     return out;
-  }(), HasSubstr("unknown site 'feild' (known: field, sim"));
+  }(), HasSubstr("unknown site 'feild' (known: field, grsim, sim"));
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -592,9 +592,10 @@ TEST(Sites, TheSameServicesBindWhatEachSiteSays) {
   }
 }
 
-TEST(Sites, RobotLinkDrivesTheSimulatorInSimAndTheRadioOnTheField) {
+TEST(Sites, RobotLinkDrivesTheSimulatorInSimGrSimOnGrSimAndTheRadioOnTheField) {
   TempDir dir;
-  for (const auto& [site, backend] : std::vector<std::pair<std::string, std::string>>{{"sim", "sim"}, {"field", "radio"}}) {
+  for (const auto& [site, backend] :
+       std::vector<std::pair<std::string, std::string>>{{"sim", "sim"}, {"grsim", "grsim"}, {"field", "radio"}}) {
     auto child = ChildProcess::start(bin_dir() / "robot_link", {"--print-config", "--team", "blue", "--site", site});
     ASSERT_TRUE(child) << child.error().message;
     std::string printed;

@@ -96,6 +96,12 @@ Result<wm::WorldState> from_idl(const idl::world::WorldState& in) {
     }
     out.possessing_robot = in.possessing_robot();
   }
+  if (in.has_command_delay()) {
+    if (!std::isfinite(in.command_delay()) || in.command_delay() < 0 || in.command_delay() > 1) {
+      return Error{"world.state command_delay " + std::to_string(in.command_delay()) + " is not in [0, 1] s"};
+    }
+    out.command_delay = in.command_delay();
+  }
   return out;
 }
 

@@ -105,6 +105,9 @@ class MotionPlanner {
   /// Called once per tick before the first plan(): robots are then planned in priority order.
   virtual void begin_tick() {}
 
+  /// s from this tick until its commands act on the robots (measured, or as configured).
+  virtual void set_actuation_latency(double /*latency*/) {}
+
   /// For planner.debug: robot `id`'s planned path this tick (team frame, every `step` s; empty without
   /// one) and how far the robot was from where last tick's plan put it (nullopt without one).
   virtual void describe(std::uint32_t /*id*/, double /*step*/, std::vector<Vec2>& path,

@@ -128,6 +128,9 @@ struct PlannerConfig {
   // skill layer plans from where the last command will have taken the robot by then. world.state is
   // already predicted to now (world_model compensates the vision delay).
   double actuation_latency = 0.015;
+  // Plan with world.state's command_delay instead (world_model measures it from our commands and the
+  // motion vision shows) once it is known; actuation_latency until then.
+  bool measured_latency = true;
   double tick_period = 1.0 / 100;      // s, the first tick's dt; later ticks use the time since the previous one
   double robot_radius = 0.09;          // m
   double stop_speed = rules::kStopMaxSpeed;  // m/s during STOP (a margin is applied below it)

@@ -142,7 +142,7 @@ Vec2 TrajectoryMotionPlanner::free_target(const wm::RobotState& robot, Vec2 targ
 Vec2 TrajectoryMotionPlanner::guarded(const wm::RobotState& robot, Vec2 velocity, const Zones& zones) const {
   const double touching = 2 * params_.robot_radius + params_.guard_margin;
   const double a = params_.guard_deceleration;
-  const double tau = params_.guard_latency;
+  const double tau = guard_latency();
   for (const ZoneRobot& other : zones.robots) {
     if (other.ours && other.id == robot.id) continue;
     const Vec2 offset = other.position - robot.position;
@@ -171,7 +171,7 @@ Vec2 TrajectoryMotionPlanner::guarded(const wm::RobotState& robot, Vec2 velocity
 Vec2 TrajectoryMotionPlanner::zone_guarded(const wm::RobotState& robot, Vec2 velocity, const MotionIntent& intent,
                                            const Zones& zones) const {
   const double a = params_.guard_deceleration;
-  const double tau = params_.guard_latency;
+  const double tau = guard_latency();
   // Along `out` (unit, out of the zone) `distance` m from its edge (0 on it or inside): towards the edge no
   // faster than still stops there, and nothing deeper once there.
   const auto hold_off = [&](const Vec2& out, double distance) {
@@ -289,8 +289,11 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   if ((target - robot.position).norm() < kArrived && velocity.norm() < 0.05) velocity = Vec2::Zero();
   velocity = guarded(robot, zone_guarded(robot, velocity, intent, zones), zones);
 
+  // The heading too turns on under the last command until this one acts (without it a late robot's heading
+  // control overshoots and wobbles).
+  const double heading_then = robot.orientation + memory.angular * params_.actuation_latency;
   const Trajectory1D turn =
-      plan_rotation(robot.orientation, memory.angular, intent.orientation,
+      plan_rotation(heading_then, memory.angular, intent.orientation,
                     {.max_speed = std::min(limits_.max_angular_speed, intent.max_angular_speed),
                      .max_acceleration = limits_.max_angular_acceleration});
   command = to_local(robot.id, velocity, turn.velocity(dt), robot.orientation);

@@ -19,6 +19,7 @@
 //   RobotCommand command = motion.plan(robot, intent, zones, dt);
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <optional>
 
@@ -42,7 +43,8 @@ struct TrajectoryMotionParams {
   // Two robots that both keep it never touch, whatever each predicts of the other; only a robot driving
   // into another can still touch it.
   double guard_margin = 0.03;          // m beyond two radii
-  double guard_latency = 0.06;         // s until a command acts (vision delay, pipeline, one tick)
+  double guard_latency = 0.06;         // s until a command acts (vision delay, pipeline, one tick); at least
+                                       // actuation_latency (the measured delay where robots answer later)
   double guard_deceleration = 3.0;     // m/s^2 the guard counts on (below the robots' limit)
   // m/s^2 a robot ahead of us is counted on to brake at most: as hard as ours brake. One braking harder
   // can touch a robot of ours following it, at a closing speed far below the crash rule's 1.5 m/s; counting
@@ -62,6 +64,7 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
                     double dt) override;
   void sent(std::uint32_t id, const Vec2& velocity, double angular) override;
   void begin_tick() override;
+  void set_actuation_latency(double latency) override { params_.actuation_latency = latency; }
   void describe(std::uint32_t id, double step, std::vector<Vec2>& path,
                 std::optional<double>& tracking_error) const override;
 
@@ -89,6 +92,7 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
   /// `dt`: the tick period (how far along last tick's paths our robots not planned yet are now).
   Obstacles obstacles_for(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones,
                           double dt) const;
+  double guard_latency() const { return std::max(params_.guard_latency, params_.actuation_latency); }
   /// `velocity` (team frame, m/s) of `robot` limited by the contact guard against every other robot.
   Vec2 guarded(const wm::RobotState& robot, Vec2 velocity, const Zones& zones) const;
   /// `velocity` limited so that `robot` can still stop before each defense zone the intent keeps it out of

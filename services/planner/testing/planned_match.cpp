@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "libs/domain/idl_convert.h"
+#include "services/referee_gateway/adapter/builtin_service.h"
 #include "services/referee_gateway/adapter/convert.h"
 
 namespace ssl::planner::testing {
@@ -17,7 +18,8 @@ PlannerConfig planner_config(TeamColor team, const PlannedMatchOptions& options)
   config.free_kick = team == TeamColor::kBlue ? options.blue_free_kick : options.yellow_free_kick;
   config.kickoff = team == TeamColor::kBlue ? options.blue_kickoff : options.yellow_kickoff;
   config.penalty = team == TeamColor::kBlue ? options.blue_penalty : options.yellow_penalty;
-  config.actuation_latency = options.actuation_latency;
+  config.actuation_latency = options.actuation_latency.value_or(
+      options.conditions == Conditions::kIdeal ? 0.0 : PlannerConfig().actuation_latency);
   config.default_field = options.field;
   return config;
 }
@@ -26,6 +28,51 @@ wm::WorldModelConfig model_config(TeamColor team) {
   wm::WorldModelConfig config;
   config.team = team;
   return config;
+}
+
+sim::RealismConfig vision_under(Conditions conditions) {
+  return conditions == Conditions::kHarsh ? sim::RealismConfig::competition() : sim::RealismConfig::realistic();
+}
+
+sim::RobotResponse response_under(Conditions conditions) {
+  switch (conditions) {
+    case Conditions::kIdeal: return sim::RobotResponse::ideal();
+    case Conditions::kRealistic: return sim::RobotResponse::realistic();
+    case Conditions::kHarsh: return sim::RobotResponse::harsh();
+  }
+  return sim::RobotResponse::ideal();
+}
+
+/// A camera frame as vision.detection carries it to the built-in referee (received when it was sent).
+idl::vision::DetectionFrame detection_sample(const sim::DetectionFrame& frame) {
+  idl::vision::DetectionFrame out;
+  out.camera_id(frame.camera_id);
+  out.frame_number(frame.frame_number);
+  out.capture_unix_ns(frame.capture_time.nanoseconds());
+  out.sent_unix_ns(frame.sent_time.nanoseconds());
+  out.receive_unix_ns(frame.sent_time.nanoseconds());
+  for (const sim::BallDetection& ball : frame.balls) {
+    idl::vision::BallDetection b;
+    b.x(ball.x);
+    b.y(ball.y);
+    b.confidence(static_cast<float>(ball.confidence));
+    out.balls().push_back(b);
+  }
+  auto robots = [](const std::vector<sim::RobotDetection>& detections, std::vector<idl::vision::RobotDetection>& into) {
+    for (const sim::RobotDetection& robot : detections) {
+      idl::vision::RobotDetection r;
+      r.robot_id(robot.robot_id);
+      r.x(robot.x);
+      r.y(robot.y);
+      r.orientation(robot.orientation);
+      r.has_orientation(true);
+      r.confidence(static_cast<float>(robot.confidence));
+      into.push_back(r);
+    }
+  };
+  robots(frame.robots_yellow, out.robots_yellow());
+  robots(frame.robots_blue, out.robots_blue());
+  return out;
 }
 
 std::optional<referee::BuiltinReferee> make_referee(const PlannedMatchOptions& options) {
@@ -42,12 +89,33 @@ std::optional<referee::BuiltinReferee> make_referee(const PlannedMatchOptions& o
 
 }  // namespace
 
+std::optional<Conditions> conditions_named(std::string_view name) {
+  if (name == "ideal") return Conditions::kIdeal;
+  if (name == "realistic") return Conditions::kRealistic;
+  if (name == "harsh") return Conditions::kHarsh;
+  return std::nullopt;
+}
+
+const char* to_string(Conditions conditions) {
+  switch (conditions) {
+    case Conditions::kIdeal: return "ideal";
+    case Conditions::kRealistic: return "realistic";
+    case Conditions::kHarsh: return "harsh";
+  }
+  return "?";
+}
+
 PlannedMatch::PlannedMatch(const PlannedMatchOptions& options)
-    : harness_({.robots_per_team = options.robots, .seed = options.seed, .field = options.field},
+    : harness_({.robots_per_team = options.robots,
+                .realism = vision_under(options.conditions),
+                .response = response_under(options.conditions),
+                .seed = options.seed,
+                .field = options.field},
                model_config(TeamColor::kBlue)),
       yellow_model_(model_config(TeamColor::kYellow)),
       robots_(options.robots),
       builtin_(make_referee(options)),
+      referee_sees_vision_(options.conditions != Conditions::kIdeal),
       start_(harness_.now()),
       next_tick_(harness_.now()) {
   yellow_model_.on_geometry(wm::testing::from_sim(harness_.sim().geometry()));
@@ -86,12 +154,17 @@ wm::RefereeInfo PlannedMatch::referee_info() const {
 
 void PlannedMatch::step_referee(wm::testing::SimHarness& harness, const sim::WorldSnapshot& truth,
                                 time::Timestamp now) {
-  referee::Observation seen{.ball_position = truth.ball.position.head<2>(),
-                            .ball_velocity = truth.ball.velocity.head<2>()};
-  for (const sim::RobotState& robot : truth.robots) {
-    seen.robots.push_back({.team = robot.key.team, .id = robot.key.id, .position = robot.position});
+  if (referee_sees_vision_) {
+    // As referee_gateway's built-in referee: the newest frame of each camera received within its 100 ms.
+    builtin_->step(referee_vision_.observe(now, referee::kVisionMaxAge), now);
+  } else {
+    referee::Observation seen{.ball_position = truth.ball.position.head<2>(),
+                              .ball_velocity = truth.ball.velocity.head<2>()};
+    for (const sim::RobotState& robot : truth.robots) {
+      seen.robots.push_back({.team = robot.key.team, .id = robot.key.id, .position = robot.position});
+    }
+    builtin_->step(seen, now);
   }
-  builtin_->step(seen, now);
   // The simulator places the ball, as builtin.teleport_placement has it do for `./ssl up`.
   const referee::RefereeState& state = builtin_->state();
   const bool placing = state.command == referee::Command::kBallPlacementYellow ||
@@ -196,6 +269,7 @@ void PlannedMatch::run(time::Duration duration,
       duration, [this](wm::testing::SimHarness& harness) { tick(harness); },
       [&](const sim::DetectionFrame& frame) {
         yellow_model_.on_detection(wm::testing::from_sim(frame), harness_.now());
+        if (referee_sees_vision_ && builtin_) referee_vision_.add(detection_sample(frame));
         const sim::WorldSnapshot& truth = harness_.truth(frame.capture_time);
         ball_travel_ += (truth.ball.position.head<2>() - last_ball).norm();
         last_ball = truth.ball.position.head<2>();

@@ -24,10 +24,12 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "libs/common/team.h"
 #include "services/planner/core/planner.h"
+#include "services/referee_gateway/adapter/builtin_input.h"
 #include "services/referee_gateway/builtin/builtin_referee.h"
 #include "services/simulator/core/simulator.h"
 #include "services/world_model/core/sim_harness.h"
@@ -35,7 +37,27 @@
 
 namespace ssl::planner::testing {
 
+/// What the match is played under, beyond the rules: how far the lab is from a field.
+///   kIdeal      realistic vision; commands act at once and exactly; the referee sees the true world (the
+///               lockstep harness before 2026-11-28)
+///   kRealistic  realistic vision; the robots answer as sim::RobotResponse::realistic() has them (25 ms radio
+///               and firmware, 1 % of commands lost, 50 ms velocity lag, limits +-10 % per robot): about 40 ms
+///               from camera to wheels with the vision delay; the referee sees the vision the teams see
+///   kHarsh      competition vision; RobotResponse::harsh() (50 ms, 5 %, 100 ms, +-20 %): about 80 ms; the
+///               referee sees vision
+/// The planners command at 100 Hz (the radio's rate) under each.
+enum class Conditions { kIdeal, kRealistic, kHarsh };
+
+/// The conditions of that name (ideal, realistic, harsh), or nullopt.
+std::optional<Conditions> conditions_named(std::string_view name);
+const char* to_string(Conditions conditions);
+
 struct PlannedMatchOptions {
+  // The scenario and whole-match tests still run under kIdeal: 27 of them fail under kRealistic today
+  // (penalties, 3 v 3 keep-away, dribbling, man-marking, the contact-free trajectory match, base against
+  // ball_chaser), which is the open part of making the play hold up outside the lab. bench/match_series
+  // plays under kRealistic by default.
+  Conditions conditions = Conditions::kIdeal;
   sim::FieldGeometry field = sim::FieldGeometry::division_b();
   std::uint32_t robots = 6;  // per team
   std::uint64_t seed = 1;
@@ -43,9 +65,9 @@ struct PlannedMatchOptions {
   /// With a profile, the built-in referee runs the match and script() is not used.
   std::optional<referee::RefereeProfile> referee;
   MotionControl motion = PlannerConfig().motion;  // both teams' skill layer
-  /// s both planners expect until a command acts: in lockstep it acts at once (0); a scenario may plan with
-  /// the deployed value (PlannerConfig's) as the robots on a real field need it.
-  double actuation_latency = 0;
+  /// s both planners expect until a command acts; nullopt: by the conditions (ideal: 0, commands act at
+  /// once; otherwise the deployed value, PlannerConfig's, as the robots on a real field need it).
+  std::optional<double> actuation_latency;
   Strategy blue_strategy = Strategy::kBase;       // each team's strategy in normal play
   Strategy yellow_strategy = Strategy::kBase;
   FreeKickPlay blue_free_kick = FreeKickPlay::kShot;  // each team's own free kicks (the base strategy's)
@@ -132,6 +154,8 @@ class PlannedMatch {
   std::uint32_t robots_;
   wm::RefereeInfo scripted_;  // the scripted referee
   std::optional<referee::BuiltinReferee> builtin_;
+  bool referee_sees_vision_ = false;
+  referee::VisionObservation referee_vision_;  // the camera frames the referee sees (when it sees vision)
   std::optional<std::uint32_t> teleported_for_;  // command counter of the last placement the simulator did
   std::uint64_t placements_teleported_ = 0;
   std::vector<ScriptedCommand> script_;

@@ -41,6 +41,9 @@
 
 namespace ssl::referee {
 
+/// How old the newest frame of a camera may be to count in the referee's observation (receive time).
+inline constexpr time::Duration kVisionMaxAge = std::chrono::milliseconds(100);
+
 struct BuiltinServiceOptions {
   std::string group = "224.5.23.1";
   int port = 10003;
@@ -50,7 +53,7 @@ struct BuiltinServiceOptions {
   MatchSetup setup;
   time::Duration step_period = std::chrono::milliseconds(10);
   time::Duration send_period = std::chrono::milliseconds(100);  // between packets without a new command
-  time::Duration vision_max_age = std::chrono::milliseconds(100);
+  time::Duration vision_max_age = kVisionMaxAge;
   time::Duration health_period = std::chrono::seconds(1);
   std::string health_name = "referee_gateway/builtin";
   // In a simulated match: the simulator's control port (SimulatorCommand, UDP). When set, each ball

@@ -1,7 +1,12 @@
 #include "services/simulator/core/simulator.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "services/simulator/core/physics/robot_kinematics.h"
 
 namespace ssl::sim {
 namespace {
@@ -50,7 +55,9 @@ Simulator::Simulator(const SimulatorOptions& options)
     : options_(options),
       physics_(std::make_unique<PhysicsWorld>(options.field, options.physics)),
       vision_(std::make_unique<VisionModel>(options.field, with_ball_models(options.vision, options.physics),
-                                            options.seed)) {
+                                            options.seed)),
+      response_random_(options.seed ^ 0x5deece66dULL) {
+  if (auto reason = options.response.invalid_reason()) throw std::invalid_argument("robot response: " + *reason);
   for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
     const RobotSpec& spec = team == TeamColor::kBlue ? options_.blue_spec : options_.yellow_spec;
     physics_->set_team_spec(team, spec);
@@ -65,6 +72,7 @@ void Simulator::place_initial_robots() {
     const double facing = team == TeamColor::kBlue ? 0.0 : M_PI;
     for (std::uint32_t id = 0; id < count; ++id) {
       physics_->add_robot({team, id}, formation_position(options_.field, team, id), facing);
+      vary_limits({team, id});
     }
   }
 }
@@ -154,6 +162,7 @@ std::optional<SimError> Simulator::apply_robot(const RobotTeleport& teleport) {
       return SimError{"MISSING_POSITION", "adding " + describe(key) + " needs x and y"};
     }
     physics_->add_robot(key, {*teleport.x, *teleport.y}, teleport.orientation.value_or(0));
+    vary_limits(key);
     current = find();
   }
   const Vec2 position(teleport.x.value_or(current->position.x()), teleport.y.value_or(current->position.y()));
@@ -170,13 +179,112 @@ std::vector<SimError> Simulator::set_commands(TeamColor team, const std::vector<
       errors.push_back({"INVALID_VALUE", "command for " + describe(key) + " has a non-finite value; ignored"});
       continue;
     }
-    if (!physics_->set_command(key, command)) {
+    if (command.kick_speed < 0 || command.kick_angle < 0 || command.kick_angle >= std::numbers::pi / 2) {
+      errors.push_back({"INVALID_VALUE", "command for " + describe(key) +
+                                             " has a negative kick speed or a kick angle outside [0, 90) degrees; ignored"});
+      continue;
+    }
+    if (!physics_->has_robot(key)) {
       errors.push_back({"UNKNOWN_ROBOT", describe(key) + " is not on the field; command ignored"});
       continue;
     }
+    if (response_random_.bernoulli(options_.response.command_loss)) {
+      ++commands_lost_;
+      continue;
+    }
+    if (options_.response.command_delay > 0) {
+      const auto delay = std::chrono::duration_cast<time::Duration>(
+          std::chrono::duration<double>(options_.response.command_delay));
+      responding_[key].in_flight.emplace_back(time() + delay, command);
+      continue;
+    }
+    act(key, command);
     last_command_[key] = {.at = time()};
   }
   return errors;
+}
+
+void Simulator::set_response(const RobotResponse& response) {
+  if (auto reason = response.invalid_reason()) throw std::invalid_argument("robot response: " + *reason);
+  options_.response = response;
+  for (const RobotState& robot : physics_->snapshot().robots) {
+    physics_->set_robot_limit_scale(robot.key, 1, 1);
+    vary_limits(robot.key);
+  }
+}
+
+void Simulator::act(RobotKey key, const RobotCommand& command) {
+  if (options_.response.velocity_time_constant <= 0) {
+    physics_->set_command(key, command);
+    return;
+  }
+  Responding& robot = responding_[key];
+  // A new kind of move (local, global, wheels) starts aiming where the robot goes now.
+  if (!robot.set_point || robot.set_point->move != command.move) robot.aimed = current_motion(key, command.move);
+  robot.set_point = command;
+}
+
+RobotCommand Simulator::current_motion(RobotKey key, RobotCommand::Move move) const {
+  RobotCommand now{.move = move};
+  for (const RobotState& robot : physics_->snapshot().robots) {
+    if (robot.key != key) continue;
+    const Vec2 local = geom::rotate(robot.velocity, geom::Angle::from_radians(-robot.orientation));
+    switch (move) {
+      case RobotCommand::Move::kLocalVelocity: now.velocity = Vec3(local.x(), local.y(), robot.angular_velocity); break;
+      case RobotCommand::Move::kGlobalVelocity:
+        now.velocity = Vec3(robot.velocity.x(), robot.velocity.y(), robot.angular_velocity);
+        break;
+      case RobotCommand::Move::kWheelVelocity: {
+        const RobotSpec& spec = robot.key.team == TeamColor::kBlue ? options_.blue_spec : options_.yellow_spec;
+        now.wheel_velocity = wheel_velocities_from_local(spec, spec.radius * options_.physics.wheel_distance_fraction,
+                                                         Vec3(local.x(), local.y(), robot.angular_velocity));
+        break;
+      }
+      case RobotCommand::Move::kNone: break;
+    }
+  }
+  return now;
+}
+
+void Simulator::deliver_commands(double h) {
+  const time::Timestamp now = time();
+  const double tau = options_.response.velocity_time_constant;
+  const double follow = tau > 0 ? 1.0 - std::exp(-h / tau) : 1.0;
+  for (auto it = responding_.begin(); it != responding_.end();) {
+    const RobotKey key = it->first;
+    Responding& robot = it->second;
+    if (!physics_->has_robot(key)) {
+      it = responding_.erase(it);
+      continue;
+    }
+    while (!robot.in_flight.empty() && robot.in_flight.front().first <= now) {
+      act(key, robot.in_flight.front().second);
+      last_command_[key] = {.at = robot.in_flight.front().first};
+      robot.in_flight.pop_front();
+    }
+    if (robot.set_point) {
+      const RobotCommand& set_point = *robot.set_point;
+      RobotCommand aimed = set_point;
+      aimed.velocity = robot.aimed.velocity + follow * (set_point.velocity - robot.aimed.velocity);
+      for (std::size_t i = 0; i < aimed.wheel_velocity.size(); ++i) {
+        aimed.wheel_velocity[i] =
+            robot.aimed.wheel_velocity[i] + follow * (set_point.wheel_velocity[i] - robot.aimed.wheel_velocity[i]);
+      }
+      robot.aimed = aimed;
+      physics_->set_command(key, aimed);
+    }
+    ++it;
+  }
+}
+
+void Simulator::vary_limits(RobotKey key) {
+  const double spread = options_.response.limit_spread;
+  if (spread <= 0) return;
+  // Drawn from the seed and the robot alone, so the same robot is the same whenever it is added.
+  VisionRandom draw(options_.seed * 0x9e3779b97f4a7c15ULL + static_cast<std::uint64_t>(key.team) * 16 + key.id + 1);
+  const double speed = draw.uniform(1 - spread, 1 + spread);
+  const double acceleration = draw.uniform(1 - spread, 1 + spread);
+  physics_->set_robot_limit_scale(key, speed, acceleration);
 }
 
 StepOutput Simulator::step(time::Duration dt) {
@@ -187,8 +295,10 @@ StepOutput Simulator::step(time::Duration dt) {
   const auto sub_step =
       std::chrono::duration_cast<time::Duration>(std::chrono::duration<double>(physics_->params().step));
   for (time::Duration remaining = dt; remaining > time::Duration::zero(); remaining -= sub_step) {
+    const time::Duration h = std::min(remaining, sub_step);
+    deliver_commands(std::chrono::duration<double>(h).count());
     stop_robots_without_commands();
-    physics_->step(std::min(remaining, sub_step));
+    physics_->step(h);
     if (physics_->time() + time_offset_ < vision_->next_event_time()) continue;
     VisionOutput vision = vision_->update(snapshot());
     output.frames.insert(output.frames.end(), std::make_move_iterator(vision.frames.begin()),
@@ -204,7 +314,9 @@ void Simulator::stop_robots_without_commands() {
   for (auto& [key, last] : last_command_) {
     if (last.stopped || now - last.at <= *options_.command_timeout) continue;
     last.stopped = true;
-    if (physics_->set_command(key, RobotCommand{.move = RobotCommand::Move::kLocalVelocity})) ++command_timeouts_;
+    if (!physics_->has_robot(key)) continue;
+    act(key, RobotCommand{.move = RobotCommand::Move::kLocalVelocity});
+    ++command_timeouts_;
   }
 }
 
@@ -233,6 +345,7 @@ void Simulator::rebuild(const FieldGeometry& field) {
   physics_->set_team_spec(TeamColor::kYellow, options_.yellow_spec);
   for (const RobotState& robot : world.robots) {
     physics_->add_robot(robot.key, robot.position, robot.orientation);
+    vary_limits(robot.key);
   }
   physics_->teleport_ball(world.ball.position, world.ball.velocity);
   vision_->set_field(field);

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -19,7 +20,9 @@
 #include <vector>
 
 #include "services/simulator/core/physics/physics_world.h"
+#include "services/simulator/core/robot_response.h"
 #include "services/simulator/core/types.h"
+#include "services/simulator/core/vision/random.h"
 #include "services/simulator/core/vision/vision_model.h"
 
 namespace ssl::sim {
@@ -35,6 +38,8 @@ struct SimulatorOptions {
   // A robot whose last command is older than this (simulated time) is commanded to stop (no motion, no
   // dribbler, kicker disarmed), as real firmware stops a robot whose radio goes quiet; nullopt: never.
   std::optional<time::Duration> command_timeout;
+  // How robots answer their commands: delay, loss, velocity lag, per-robot limits (robot_response.h).
+  RobotResponse response;
 };
 
 /// An error answered to a simulation-protocol client: a machine-readable code and a message.
@@ -99,12 +104,18 @@ class Simulator {
   /// commands with non-finite values (those are ignored).
   std::vector<SimError> set_commands(TeamColor team, const std::vector<RobotCommandFor>& commands);
 
+  /// Changes how robots answer their commands from now on (commands in flight arrive as sent; each robot's
+  /// limits are drawn again). Throws std::invalid_argument when the response is invalid.
+  void set_response(const RobotResponse& response);
+
   /// Advances simulated time by `dt` (> 0) and returns the vision output that became due.
   StepOutput step(time::Duration dt);
 
   std::vector<RobotFeedback> feedback(TeamColor team) const;
   /// How many times a robot was stopped because its commands stopped (options.command_timeout).
   std::uint64_t command_timeouts() const { return command_timeouts_; }
+  /// Commands lost on the way (options.response.command_loss).
+  std::uint64_t commands_lost() const { return commands_lost_; }
   /// The world now; time on the simulated clock (continuous across field rebuilds).
   WorldSnapshot snapshot() const;
   /// The simulated clock alone (snapshot().time without building the snapshot).
@@ -120,6 +131,14 @@ class Simulator {
   std::optional<SimError> apply_robot(const RobotTeleport& teleport);
   void rebuild(const FieldGeometry& field);
   void stop_robots_without_commands();
+  /// Gives `key` a command that reached it: at once, or as the set point its velocity lags behind.
+  void act(RobotKey key, const RobotCommand& command);
+  /// A command that keeps `key` moving as it does now (the start of a lagged set point).
+  RobotCommand current_motion(RobotKey key, RobotCommand::Move move) const;
+  /// Commands whose delay is over act; lagged set points move one sub-step of `h` seconds.
+  void deliver_commands(double h);
+  /// Scales the limits of a robot just added by its own factors (options.response.limit_spread).
+  void vary_limits(RobotKey key);
 
   SimulatorOptions options_;
   // Held by pointer so that a new field geometry can rebuild them.
@@ -133,6 +152,14 @@ class Simulator {
   };
   std::map<RobotKey, LastCommand> last_command_;
   std::uint64_t command_timeouts_ = 0;
+  struct Responding {
+    std::deque<std::pair<time::Timestamp, RobotCommand>> in_flight;  // sent; acts at the simulated time
+    std::optional<RobotCommand> set_point;  // the last one that arrived (with a velocity lag)
+    RobotCommand aimed;                     // set_point with the lagged velocities the motors aim for
+  };
+  std::map<RobotKey, Responding> responding_;
+  VisionRandom response_random_;  // command loss: its own stream, so vision's draws do not change
+  std::uint64_t commands_lost_ = 0;
 };
 
 }  // namespace ssl::sim

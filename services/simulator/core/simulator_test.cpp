@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace ssl::sim {
 namespace {
@@ -169,6 +170,139 @@ TEST(SimulatorTest, ANewFieldRebuildsTheWorldAndKeepsTheRobots) {
   EXPECT_TRUE(sim.apply(request).empty());
   EXPECT_DOUBLE_EQ(sim.geometry().field.field_length, 9.0);
   EXPECT_EQ(sim.snapshot().robots.size(), 4u);
+}
+
+// --- robot response (robot_response.h) ---
+
+/// Blue robot 1 on a clear run along y = 2.5, commanded forward at 1 m/s every 10 ms from t = 0; its speed
+/// after each 2 ms step (m/s), over `duration` seconds.
+std::vector<double> forward_speeds(const RobotResponse& response, double duration, std::uint64_t seed = 1) {
+  SimulatorOptions options = perfect_vision(2);
+  options.response = response;
+  options.seed = seed;
+  Simulator sim(options);
+  ControlRequest clear_run;
+  clear_run.robots = {RobotTeleport{.key = {TeamColor::kBlue, 1}, .x = -3.0, .y = 2.5, .orientation = 0.0}};
+  EXPECT_TRUE(sim.apply(clear_run).empty());
+  RobotCommand forward{.move = RobotCommand::Move::kLocalVelocity};
+  forward.velocity.x() = 1.0;
+  std::vector<double> speeds;
+  for (int step = 0; step < static_cast<int>(std::lround(duration / 0.002)); ++step) {
+    if (step % 5 == 0) EXPECT_TRUE(sim.set_commands(TeamColor::kBlue, {{1, forward}}).empty());
+    sim.step(milliseconds(2));
+    speeds.push_back(find(sim.snapshot(), {TeamColor::kBlue, 1})->velocity.norm());
+  }
+  return speeds;
+}
+
+/// Seconds until `speeds` (one per 2 ms step) first reach `level`, or -1.
+double time_to_reach(const std::vector<double>& speeds, double level) {
+  for (std::size_t i = 0; i < speeds.size(); ++i) {
+    if (speeds[i] >= level) return 0.002 * static_cast<double>(i + 1);
+  }
+  return -1;
+}
+
+TEST(SimulatorRobotResponse, IdealCommandsActAtOnceUnderTheAccelerationLimit) {
+  // 3 m/s^2 speed-up: 1 m/s after 0.333 s, moving after the first step.
+  const std::vector<double> speeds = forward_speeds(RobotResponse::ideal(), 0.6);
+  EXPECT_GT(speeds.front(), 0.005);
+  EXPECT_NEAR(time_to_reach(speeds, 0.999), 0.334, 0.004);
+}
+
+TEST(SimulatorRobotResponse, ADelayedCommandActsThatMuchLater) {
+  const RobotResponse delayed{.command_delay = 0.04};
+  const std::vector<double> speeds = forward_speeds(delayed, 0.6);
+  EXPECT_EQ(speeds[18], 0.0) << "still standing at 38 ms";
+  EXPECT_GT(speeds[21], 0.0) << "moving at 44 ms";
+  EXPECT_NEAR(time_to_reach(speeds, 0.999), 0.374, 0.004);
+}
+
+TEST(SimulatorRobotResponse, TheVelocityLagsTheCommandWithItsTimeConstant) {
+  // A 0.1 s first-order lag under the 3 m/s^2 ramp: the set point rises at 10 m/s^2 at first, faster than
+  // the ramp, so the robot ramps until about 0.31 s (0.95 m/s), then follows the set point's exponential:
+  // 0.999 m/s only after tau ln 1000 = 0.69 s, where the ideal robot is there at 0.333 s.
+  const RobotResponse lagging{.velocity_time_constant = 0.1};
+  const std::vector<double> speeds = forward_speeds(lagging, 1.0);
+  const double at_95 = time_to_reach(speeds, 0.95);
+  EXPECT_GT(at_95, 0.30);
+  EXPECT_LT(at_95, 0.40);
+  EXPECT_GT(time_to_reach(speeds, 0.999), 0.6) << "the last per mille takes several time constants";
+  EXPECT_NEAR(speeds.back(), 1.0, 0.002);
+}
+
+TEST(SimulatorRobotResponse, EachRobotHasItsOwnLimitsWithinTheSpreadAndTheSameOnesForTheSameSeed) {
+  const RobotResponse spread{.limit_spread = 0.2};
+  // Commanded 5 m/s, each robot settles at its own speed limit: 3 m/s x [0.8, 1.2].
+  auto top_speeds = [&](std::uint64_t seed) {
+    SimulatorOptions options = perfect_vision(4);
+    options.response = spread;
+    options.seed = seed;
+    Simulator sim(options);
+    std::vector<RobotCommandFor> commands;
+    for (std::uint32_t id = 1; id < 4; ++id) {
+      ControlRequest lane;
+      lane.robots = {RobotTeleport{.key = {TeamColor::kBlue, id}, .x = -5.5, .y = -3.0 + 1.5 * id, .orientation = 0.0}};
+      EXPECT_TRUE(sim.apply(lane).empty());
+      RobotCommand fast{.move = RobotCommand::Move::kLocalVelocity};
+      fast.velocity.x() = 5.0;
+      commands.push_back({id, fast});
+    }
+    for (int i = 0; i < 150; ++i) {
+      sim.set_commands(TeamColor::kBlue, commands);
+      sim.step(milliseconds(10));
+    }
+    std::vector<double> speeds;
+    for (std::uint32_t id = 1; id < 4; ++id) speeds.push_back(find(sim.snapshot(), {TeamColor::kBlue, id})->velocity.norm());
+    return speeds;
+  };
+  const std::vector<double> speeds = top_speeds(3);
+  for (double speed : speeds) {
+    EXPECT_GE(speed, 2.4 - 1e-6);
+    EXPECT_LE(speed, 3.6 + 1e-6);
+  }
+  EXPECT_GT(std::abs(speeds[0] - speeds[1]) + std::abs(speeds[1] - speeds[2]), 0.05) << "the robots differ";
+  EXPECT_EQ(speeds, top_speeds(3));
+  EXPECT_NE(speeds, top_speeds(4));
+}
+
+TEST(SimulatorRobotResponse, LostCommandsAreCountedAndTheRobotKeepsItsLast) {
+  SimulatorOptions options = perfect_vision(2);
+  options.response = RobotResponse{.command_loss = 0.5};
+  Simulator sim(options);
+  RobotCommand forward{.move = RobotCommand::Move::kLocalVelocity};
+  forward.velocity.x() = 0.5;
+  for (int i = 0; i < 200; ++i) {
+    EXPECT_TRUE(sim.set_commands(TeamColor::kBlue, {{1, forward}}).empty());
+    sim.step(milliseconds(10));
+  }
+  EXPECT_GT(sim.commands_lost(), 70u);
+  EXPECT_LT(sim.commands_lost(), 130u);
+  EXPECT_NEAR(find(sim.snapshot(), {TeamColor::kBlue, 1})->velocity.norm(), 0.5, 0.01);
+}
+
+TEST(SimulatorRobotResponse, TheProfilesAreValidAndBadValuesAreRejectedWithTheReason) {
+  for (const char* name : {"ideal", "realistic", "harsh"}) {
+    ASSERT_TRUE(RobotResponse::profile(name)) << name;
+    EXPECT_FALSE(RobotResponse::profile(name)->invalid_reason()) << name;
+  }
+  EXPECT_FALSE(RobotResponse::profile("perfect"));
+  EXPECT_EQ(RobotResponse::profile("ideal"), RobotResponse{});
+  SimulatorOptions options = perfect_vision(1);
+  options.response.command_loss = 1.5;
+  EXPECT_THROW(Simulator{options}, std::invalid_argument);
+  options.response = RobotResponse{.command_delay = std::numeric_limits<double>::quiet_NaN()};
+  EXPECT_THROW(Simulator{options}, std::invalid_argument);
+  options.response = RobotResponse{.limit_spread = 1.0};
+  EXPECT_THROW(Simulator{options}, std::invalid_argument);
+}
+
+TEST(SimulatorRobotResponse, AKickWithANegativeSpeedIsAnInvalidValueNotAnUnknownRobot) {
+  Simulator sim(perfect_vision(1));
+  RobotCommand bad{.kick_speed = -1};
+  const std::vector<SimError> errors = sim.set_commands(TeamColor::kBlue, {{0, bad}});
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].code, "INVALID_VALUE");
 }
 
 }  // namespace

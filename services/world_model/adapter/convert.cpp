@@ -123,6 +123,8 @@ idl::world::WorldState to_idl(const WorldState& in, std::uint64_t sequence_numbe
   }
   out.has_possessing_robot(in.possessing_robot.has_value());
   out.possessing_robot(in.possessing_robot.value_or(0));
+  out.has_command_delay(in.command_delay.has_value());
+  out.command_delay(in.command_delay.value_or(0));
   return out;
 }
 

@@ -165,6 +165,10 @@ void WorldModelNode::report_health(time::Timestamp now) {
     report.counters.emplace_back(prefix + "_heading_noise_mrad",
                                  static_cast<std::uint64_t>(std::lround(camera.noise.orientation_stddev * 1e3)));
   }
+  // Our robots' delay from command to motion as measured (what the planner compensates).
+  if (const std::optional<double> delay = model_.command_delay()) {
+    report.counters.emplace_back("command_delay_ms", static_cast<std::uint64_t>(std::lround(*delay * 1e3)));
+  }
   (void)health_.publish(report);
   processing_times_.clear();
   published_in_period_ = 0;

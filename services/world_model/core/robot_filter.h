@@ -103,6 +103,8 @@ class RobotFilter {
   /// t_vision + command_delay until the next one; predictions over an interval use the commands in force
   /// piece by piece (a detection is captured ~15 ms before the newest command was sent).
   void set_command(const RobotCommand& command, time::Timestamp t_vision);
+  /// The delay from sending to executing for commands recorded from now on (s >= 0; the measured one).
+  void set_command_delay(double delay) { params_.command_delay = delay; }
 
   /// Fuses one detection captured at t_capture (vision clock). `in_contact`: the robot touches another
   /// robot or a wall, so forces we do not know act on it: the commanded velocity is not trusted for this

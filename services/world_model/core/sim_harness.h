@@ -77,6 +77,7 @@ inline sim::RobotCommand curve_command(double t, double phase) {
 struct HarnessOptions {
   std::uint32_t robots_per_team = 0;
   sim::RealismConfig realism = sim::RealismConfig::realistic();
+  sim::RobotResponse response = sim::RobotResponse::ideal();  // how robots answer commands
   std::uint64_t seed = 1;
   int camera_count = 4;
   sim::FieldGeometry field = sim::FieldGeometry::division_a();
@@ -146,6 +147,7 @@ class SimHarness {
     out.seed = options.seed;
     out.vision.camera_count = options.camera_count;
     out.vision.realism = options.realism;
+    out.response = options.response;
     return out;
   }
 

@@ -17,7 +17,8 @@ WorldModel::WorldModel(const WorldModelConfig& config)
       game_(config.team),
       ball_(config.ball, config.ball_model),
       alignment_(config.camera_alignment),
-      noise_(config.detection_noise, {config.robot.position_stddev, config.robot.orientation_stddev}) {}
+      noise_(config.detection_noise, {config.robot.position_stddev, config.robot.orientation_stddev}),
+      delays_(config.command_delay) {}
 
 time::Timestamp WorldModel::to_vision(time::Timestamp now) const {
   return now - time::duration_from_seconds(offset_.value_or(0));
@@ -49,7 +50,10 @@ void WorldModel::on_commands(std::span<const RobotCommand> commands, time::Times
   const time::Timestamp t = to_vision(now);
   for (const RobotCommand& command : commands) {
     if (command.id >= kMaxRobotsPerTeam) continue;
-    if (Track& track = tracks(config_.team)[command.id]) track->set_command(command, t);
+    Track& track = tracks(config_.team)[command.id];
+    if (!track) continue;
+    track->set_command(command, t);
+    delays_.on_command(command.id, Vec2(command.forward, command.left), t);
   }
 }
 
@@ -62,7 +66,9 @@ void WorldModel::reconfigure(const WorldModelConfig& config) {
 void WorldModel::on_detection(const DetectionFrame& frame, time::Timestamp now) {
   ++counters_.frames;
   const double sample = seconds(now - frame.sent_time);
-  offset_ = offset_ ? std::min(sample, *offset_ + config_.offset_drift) : sample;
+  const double rise = offset_ ? std::max(0.0, seconds(now - offset_updated_)) * config_.vision_clock_slowness : 0.0;
+  offset_ = offset_ ? std::min(sample, *offset_ + rise) : sample;
+  offset_updated_ = now;
   const time::Timestamp t = frame.capture_time;
 
   update_robots(TeamColor::kBlue, frame.camera_id, frame.robots_blue, t);
@@ -72,6 +78,13 @@ void WorldModel::on_detection(const DetectionFrame& frame, time::Timestamp now) 
   update_possession(t);
   drop_lost_tracks(t);
   if (ball_.initialised()) game_.update_ball(ball_.predict_state(t).head<2>(), t);
+  delays_.update(t);
+  if (delays_.delay() != delay_in_filters_) {
+    delay_in_filters_ = delays_.delay();
+    for (Track& track : tracks(config_.team)) {
+      if (track && delay_in_filters_) track->set_command_delay(*delay_in_filters_);
+    }
+  }
 
   if (t >= stamp_.capture_time) {
     stamp_.capture_time = t;
@@ -100,9 +113,14 @@ void WorldModel::update_robots(TeamColor team, std::uint32_t camera_id, std::spa
       alignment_.observe(camera_id, ObjectKey::robot(team, raw.id), raw.position, t);
       detection.position = alignment_.correct(camera_id, raw.position);
     }
+    if (team == config_.team) {
+      const double heading = detection.has_orientation ? detection.orientation : std::nan("");
+      delays_.on_position(detection.id, detection.position, heading, t);
+    }
     Track& track = team_tracks[detection.id];
     if (!track) {
       track.emplace(config_.robot, detection, t, noise);
+      if (team == config_.team && delay_in_filters_) track->set_command_delay(*delay_in_filters_);
       ++counters_.tracks_created;
       continue;
     }
@@ -376,6 +394,7 @@ WorldState WorldModel::state_at_vision_time(time::Timestamp t) const {
   world.flipped = frame_.flipped();
   world.possession = possession_;
   world.possessing_robot = possessing_robot_;
+  world.command_delay = delays_.delay();
 
   for (TeamColor team : {TeamColor::kBlue, TeamColor::kYellow}) {
     std::vector<RobotState>& out = team == config_.team ? world.friendly : world.enemy;

@@ -6,7 +6,9 @@
 //
 // Clocks. Detection times are on the vision clock; `now` is this host's wall clock. The offset
 // (host - vision) is estimated as the smallest (now - sent_time) seen (the network delay is the only part
-// not stamped by SSL-Vision), rising by offset_drift per frame so a changed offset is followed. state(now)
+// not stamped by SSL-Vision), rising by at most vision_clock_slowness seconds per second between frames so
+// that a vision clock running slower than this host's is followed (grSim stamps its simulated time, which
+// falls behind the wall clock when grSim cannot keep real time: 2 % on a loaded 2-core machine). state(now)
 // predicts every track to now - offset: latency compensation of the vision processing delay and our own.
 //
 //   WorldModel model({.team = TeamColor::kBlue});
@@ -27,6 +29,7 @@
 #include "services/world_model/core/ball_filter.h"
 #include "services/world_model/core/camera_alignment.h"
 #include "services/world_model/core/chip_estimator.h"
+#include "services/world_model/core/command_delay.h"
 #include "services/world_model/core/detection_noise.h"
 #include "libs/domain/team_field.h"
 #include "libs/domain/game_state.h"
@@ -53,7 +56,7 @@ struct WorldModelConfig {
   double contact_margin = 0.03;         // m: robots closer than two radii plus this (or this close to a
                                         // wall) may be pushed: their filters do not trust the commands
   double dribbler_capture_distance = 0.1;  // m: a detection this close to a holding dribbler is used
-  double offset_drift = 1e-5;           // s per frame the clock offset estimate may rise
+  double vision_clock_slowness = 0.05;  // s per s the clock offset estimate may rise (see the header)
   double carried_ball_after = 0.03;     // s without a ball detection (two camera frames): hidden ...
   double carried_ball_timeout = 1.0;    // s ... right after touching a dribbler: it moves with that robot
                                         // until this long without a detection
@@ -61,6 +64,9 @@ struct WorldModelConfig {
   // Each camera's robot detection noise, estimated from its detections; the robot filters assume it
   // instead of robot.position_stddev / orientation_stddev once a camera has enough residuals.
   DetectionNoiseParams detection_noise;
+  // Our robots' delay from command to motion, measured; once known it replaces robot.command_delay in the
+  // filters and goes out with the state (the planner compensates it).
+  CommandDelayParams command_delay;
   bool align_cameras = true;            // estimate and correct each camera's calibration error
   // Translation only by default: with well calibrated cameras the scale and rotation estimates add about
   // 1 mm of wandering correction (measured), more than they remove; enable them for a field whose camera
@@ -121,6 +127,8 @@ class WorldModel {
   const DetectionNoiseEstimator& detection_noise() const { return noise_; }
   /// The last kick, in the TEAM frame.
   std::optional<KickEvent> last_kick() const;
+  /// Our robots' measured delay from command to motion (s), once known.
+  std::optional<double> command_delay() const { return delays_.delay(); }
   /// Host wall clock minus vision clock, s (nullopt before the first frame).
   std::optional<double> clock_offset() const { return offset_; }
   /// Vision-clock capture time of the newest frame.
@@ -180,12 +188,15 @@ class WorldModel {
   BallFilter ball_;
   CameraAlignment alignment_;
   DetectionNoiseEstimator noise_;
+  CommandDelayEstimator delays_;
+  std::optional<double> delay_in_filters_;  // the measured delay our filters were last given
   ChipTrack chip_;
   std::optional<RobotKey> carrier_;  // touching the ball at its last detection
   std::vector<CameraInfo> cameras_;  // from the geometry: camera centres for the chip reconstruction
   std::array<bool, kMaxRobotsPerTeam> ball_in_dribbler_{};
   std::array<time::Timestamp, kMaxRobotsPerTeam> feedback_time_{};                        // host clock
   std::optional<double> offset_;
+  time::Timestamp offset_updated_;  // host clock of the frame that last updated offset_
   VisionStamp stamp_;
   Possession possession_ = Possession::kNone;
   std::optional<std::uint32_t> possessing_robot_;

@@ -177,5 +177,28 @@ TEST(WorldModel, LostTrackIsDroppedAndStateIsPredictedToNow) {
   EXPECT_EQ(model.state_at_vision_time(frame_at(119).capture_time).enemy.size(), 0u);
 }
 
+TEST(WorldModel, AVisionClockThatRunsSlowerThanOursIsFollowed) {
+  // grSim stamps its simulated time, which fell 2 % behind the wall clock on a loaded machine: after 48 s of
+  // frames the host is 1 s ahead of the vision clock beyond the fixed offset. state(now) must still be the
+  // state at the newest capture (plus the frame's age), not 1 s further along the robot's velocity.
+  WorldModel model({.team = TeamColor::kBlue});
+  const double rate = 0.98;  // vision seconds per host second
+  const time::Timestamp host_start = time::Timestamp::from_seconds(1.8e9);
+  time::Timestamp now;
+  for (int i = 0; i < 3600; ++i) {  // 75 Hz
+    DetectionFrame f = frame_at(i);  // vision clock
+    const double t = time::to_seconds(f.capture_time - frame_at(0).capture_time);
+    f.robots_blue.push_back({.id = 0, .position = Vec2(-2 + 0.5 * std::sin(t), 0), .orientation = 0});
+    f.sent_time = f.capture_time;
+    now = host_start + time::duration_from_seconds(t / rate + 0.001);
+    model.on_detection(f, now);
+  }
+  const double newest = 0.5 * std::sin(time::to_seconds(frame_at(3599).capture_time - frame_at(0).capture_time)) - 2;
+  const WorldState world = model.state(now);
+  ASSERT_EQ(world.friendly.size(), 1u);
+  EXPECT_NEAR(world.friendly[0].position.x(), newest, 0.005);
+  EXPECT_NEAR(*model.clock_offset(), time::to_seconds(now - frame_at(3599).sent_time), 0.002);
+}
+
 }  // namespace
 }  // namespace ssl::wm

@@ -207,6 +207,8 @@ struct PhysicsWorld::Impl {
     std::unique_ptr<btRigidBody> body;
     RobotCommand command;
     bool kick_latched = false;  // kicked; no kick or hold until the ball has left the front
+    double speed_scale = 1;         // of the team's speed limits
+    double acceleration_scale = 1;  // of the team's acceleration limits
   };
 
   FieldGeometry field;
@@ -409,7 +411,13 @@ struct PhysicsWorld::Impl {
 
   void drive_robot(Robot& robot, double h) {
     const RobotSpec& spec = specs[team_index(robot.key.team)];
-    const RobotLimits& limits = spec.limits;
+    RobotLimits limits = spec.limits;
+    limits.vel_absolute_max *= robot.speed_scale;
+    limits.vel_angular_max *= robot.speed_scale;
+    limits.acc_speedup_absolute_max *= robot.acceleration_scale;
+    limits.acc_brake_absolute_max *= robot.acceleration_scale;
+    limits.acc_speedup_angular_max *= robot.acceleration_scale;
+    limits.acc_brake_angular_max *= robot.acceleration_scale;
     btRigidBody* body = robot.body.get();
     const RobotCommand& command = robot.command;
     Vec3 target = Vec3::Zero();  // local or global, see `local` below
@@ -591,6 +599,17 @@ bool PhysicsWorld::add_robot(RobotKey key, Vec2 position, double orientation) {
       impl_->make_robot_body(spec, impl_->hulls[team].get(), pose(position, spec.height / 2, orientation));
   impl_->world.addRigidBody(robot.body.get(), kGroupRobot, kMaskRobot);
   impl_->robots.emplace(key, std::move(robot));
+  return true;
+}
+
+bool PhysicsWorld::set_robot_limit_scale(RobotKey key, double speed, double acceleration) {
+  const auto it = impl_->robots.find(key);
+  if (it == impl_->robots.end() || !(std::isfinite(speed) && speed > 0) ||
+      !(std::isfinite(acceleration) && acceleration > 0)) {
+    return false;
+  }
+  it->second.speed_scale = speed;
+  it->second.acceleration_scale = acceleration;
   return true;
 }
 

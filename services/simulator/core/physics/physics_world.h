@@ -78,6 +78,9 @@ class PhysicsWorld {
   bool add_robot(RobotKey key, Vec2 position, double orientation);
   bool remove_robot(RobotKey key);
   bool has_robot(RobotKey key) const;
+  /// Scales one present robot's speed limits by `speed` and its acceleration limits by `acceleration` (both
+  /// > 0; 1 = its team's spec), as real robots of one team differ. False when absent or a factor is not.
+  bool set_robot_limit_scale(RobotKey key, double speed, double acceleration);
   /// Moves a present robot and sets its velocity (global frame); keeps its command.
   bool teleport_robot(RobotKey key, Vec2 position, double orientation, Vec2 velocity,
                       double angular_velocity);

@@ -43,26 +43,6 @@ Vec2 clamp_norm(const Vec2& v, double max_norm) {
   return v * (max_norm / norm);
 }
 
-Vec2 ramp_velocity(const Vec2& current, const Vec2& target, double speedup, double brake, double dt) {
-  const Vec2 delta = target - current;
-  const double length = delta.norm();
-  if (length == 0.0) return target;
-  const Vec2 direction = delta / length;
-  // Along current + s * direction the speed falls until s_min (the point nearest standstill), then rises.
-  const double s_min = std::clamp(-current.dot(direction), 0.0, length);
-  double time_left = dt;
-  double s = 0.0;
-  if (s_min > 0.0) {
-    const double brake_time = s_min / brake;
-    if (brake_time >= time_left) return current + direction * (brake * time_left);
-    s = s_min;
-    time_left -= brake_time;
-  }
-  const double advance = speedup * time_left;
-  if (s + advance >= length) return target;
-  return current + direction * (s + advance);
-}
-
 double ramp_angular_velocity(double current, double target, double speedup, double brake, double dt) {
   return ramp_velocity(Vec2(current, 0.0), Vec2(target, 0.0), speedup, brake, dt).x();
 }

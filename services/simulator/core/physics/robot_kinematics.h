@@ -21,6 +21,7 @@
 
 #include <array>
 
+#include "libs/domain/robot_motion.h"
 #include "services/simulator/core/types.h"
 
 namespace ssl::sim {
@@ -36,9 +37,8 @@ Vec3 local_velocity_from_wheels(const RobotSpec& spec, double wheel_distance,
 /// `v` scaled down to length `max_norm` if longer (max_norm >= 0).
 Vec2 clamp_norm(const Vec2& v, double max_norm);
 
-/// One step of the velocity ramp from `current` towards `target` (both m/s, any frame) over dt seconds
-/// with the speed-up and brake accelerations (m/s^2, > 0). Returns `target` when it is reachable.
-Vec2 ramp_velocity(const Vec2& current, const Vec2& target, double speedup, double brake, double dt);
+/// One step of the velocity ramp (libs/domain/robot_motion.h, the law the world model replays too).
+using ssl::ramp_velocity;
 
 /// The same ramp for an angular velocity (rad/s, rad/s^2).
 double ramp_angular_velocity(double current, double target, double speedup, double brake, double dt);

@@ -1,6 +1,7 @@
-// The vision model's one source of randomness: std::mt19937_64 (fully specified by the standard) plus our own
-// distributions, so the same seed and the same calls give the same numbers with any standard library (the
-// std distributions are not specified bit for bit). Not thread-safe; owned by one VisionModel.
+// The simulator's source of randomness (the vision model's draws, and the robot response's in streams of
+// their own): std::mt19937_64 (fully specified by the standard) plus our own distributions, so the same seed
+// and the same calls give the same numbers with any standard library (the std distributions are not
+// specified bit for bit). Not thread-safe; each owner has its own.
 //
 //   VisionRandom random(42);
 //   double noise = random.normal() * stddev;
