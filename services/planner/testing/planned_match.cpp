@@ -18,15 +18,19 @@ PlannerConfig planner_config(TeamColor team, const PlannedMatchOptions& options)
   config.free_kick = team == TeamColor::kBlue ? options.blue_free_kick : options.yellow_free_kick;
   config.kickoff = team == TeamColor::kBlue ? options.blue_kickoff : options.yellow_kickoff;
   config.penalty = team == TeamColor::kBlue ? options.blue_penalty : options.yellow_penalty;
+  // Under ideal conditions commands act at once: nothing to measure, the planners expect no latency (as the
+  // harness always had it); otherwise they plan with the delay their world models measure.
   config.actuation_latency = options.actuation_latency.value_or(
       options.conditions == Conditions::kIdeal ? 0.0 : PlannerConfig().actuation_latency);
+  config.measured_latency = options.conditions != Conditions::kIdeal;
   config.default_field = options.field;
   return config;
 }
 
-wm::WorldModelConfig model_config(TeamColor team) {
+wm::WorldModelConfig model_config(TeamColor team, Conditions conditions) {
   wm::WorldModelConfig config;
   config.team = team;
+  config.command_delay.estimate = conditions != Conditions::kIdeal;
   return config;
 }
 
@@ -111,8 +115,8 @@ PlannedMatch::PlannedMatch(const PlannedMatchOptions& options)
                 .response = response_under(options.conditions),
                 .seed = options.seed,
                 .field = options.field},
-               model_config(TeamColor::kBlue)),
-      yellow_model_(model_config(TeamColor::kYellow)),
+               model_config(TeamColor::kBlue, options.conditions)),
+      yellow_model_(model_config(TeamColor::kYellow, options.conditions)),
       robots_(options.robots),
       builtin_(make_referee(options)),
       referee_sees_vision_(options.conditions != Conditions::kIdeal),

@@ -38,11 +38,12 @@
 namespace ssl::planner::testing {
 
 /// What the match is played under, beyond the rules: how far the lab is from a field.
-///   kIdeal      realistic vision; commands act at once and exactly; the referee sees the true world (the
-///               lockstep harness before 2026-11-28)
+///   kIdeal      realistic vision; commands act at once and exactly, the planners expect no latency and
+///               measure none; the referee sees the true world (the lockstep harness before 2026-11-28)
 ///   kRealistic  realistic vision; the robots answer as sim::RobotResponse::realistic() has them (25 ms radio
 ///               and firmware, 1 % of commands lost, 50 ms velocity lag, limits +-10 % per robot): about 40 ms
-///               from camera to wheels with the vision delay; the referee sees the vision the teams see
+///               from camera to wheels with the vision delay; the planners plan with the delay their world
+///               models measure; the referee sees the vision the teams see
 ///   kHarsh      competition vision; RobotResponse::harsh() (50 ms, 5 %, 100 ms, +-20 %): about 80 ms; the
 ///               referee sees vision
 /// The planners command at 100 Hz (the radio's rate) under each.

@@ -56,7 +56,7 @@ struct WorldModelConfig {
   double contact_margin = 0.03;         // m: robots closer than two radii plus this (or this close to a
                                         // wall) may be pushed: their filters do not trust the commands
   double dribbler_capture_distance = 0.1;  // m: a detection this close to a holding dribbler is used
-  double vision_clock_slowness = 0.05;  // s per s the clock offset estimate may rise (see the header)
+  double vision_clock_slowness = 0.03;  // s per s the clock offset estimate may rise (see the header)
   double carried_ball_after = 0.03;     // s without a ball detection (two camera frames): hidden ...
   double carried_ball_timeout = 1.0;    // s ... right after touching a dribbler: it moves with that robot
                                         // until this long without a detection
