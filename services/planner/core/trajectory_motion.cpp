@@ -289,11 +289,8 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   if ((target - robot.position).norm() < kArrived && velocity.norm() < 0.05) velocity = Vec2::Zero();
   velocity = guarded(robot, zone_guarded(robot, velocity, intent, zones), zones);
 
-  // The heading too turns on under the last command until this one acts (without it a late robot's heading
-  // control overshoots and wobbles).
-  const double heading_then = robot.orientation + memory.angular * params_.actuation_latency;
   const Trajectory1D turn =
-      plan_rotation(heading_then, memory.angular, intent.orientation,
+      plan_rotation(robot.orientation, memory.angular, intent.orientation,
                     {.max_speed = std::min(limits_.max_angular_speed, intent.max_angular_speed),
                      .max_acceleration = limits_.max_angular_acceleration});
   command = to_local(robot.id, velocity, turn.velocity(dt), robot.orientation);

@@ -63,12 +63,37 @@ void WorldModel::reconfigure(const WorldModelConfig& config) {
   config_.team = team;
 }
 
+void WorldModel::update_offset(double sample, time::Timestamp now) {
+  constexpr double kWindow = 1.0;  // s of host time per smallest sample
+  if (!offset_) {
+    offset_ = sample;
+    offset_window_ = {now, sample};
+  } else {
+    const double elapsed = std::max(0.0, seconds(now - offset_updated_));
+    offset_ = std::min(sample, *offset_ + config_.offset_drift + offset_rise_rate_ * elapsed);
+    offset_window_.smallest = std::min(offset_window_.smallest, sample);
+  }
+  offset_updated_ = now;
+  if (seconds(now - offset_window_.start) < kWindow) return;
+  if (last_offset_window_) {
+    // A rise of the smallest sample within kJitter is delivery jitter: a steady clock keeps the estimate on
+    // its smallest sample, as if nothing drifted.
+    constexpr double kJitter = 0.001;  // s per window
+    const double span = seconds(offset_window_.start - last_offset_window_->start);
+    const double rise = offset_window_.smallest - last_offset_window_->smallest;
+    offset_rise_rate_ = rise > kJitter ? std::min(rise / std::max(span, 1e-3), config_.vision_clock_slowness) : 0.0;
+    // While the vision clock drifts, the smallest sample of a whole second is an offset the clocks had: the
+    // estimate is at least that (it catches up with the drift before the rate was known).
+    if (offset_rise_rate_ > 0) offset_ = std::max(*offset_, offset_window_.smallest);
+  }
+  last_offset_window_ = offset_window_;
+  offset_window_ = {now, sample};
+}
+
 void WorldModel::on_detection(const DetectionFrame& frame, time::Timestamp now) {
   ++counters_.frames;
   const double sample = seconds(now - frame.sent_time);
-  const double rise = offset_ ? std::max(0.0, seconds(now - offset_updated_)) * config_.vision_clock_slowness : 0.0;
-  offset_ = offset_ ? std::min(sample, *offset_ + rise) : sample;
-  offset_updated_ = now;
+  update_offset(sample, now);
   const time::Timestamp t = frame.capture_time;
 
   update_robots(TeamColor::kBlue, frame.camera_id, frame.robots_blue, t);

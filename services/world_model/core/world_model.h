@@ -6,9 +6,11 @@
 //
 // Clocks. Detection times are on the vision clock; `now` is this host's wall clock. The offset
 // (host - vision) is estimated as the smallest (now - sent_time) seen (the network delay is the only part
-// not stamped by SSL-Vision), rising by at most vision_clock_slowness seconds per second between frames so
-// that a vision clock running slower than this host's is followed (grSim stamps its simulated time, which
-// falls behind the wall clock when grSim cannot keep real time: 2 % on a loaded 2-core machine). state(now)
+// not stamped by SSL-Vision), rising by offset_drift per frame, and by the rate at which the smallest sample
+// of each second rose over the last one beyond 1 ms (up to vision_clock_slowness): a vision clock slower than
+// this host's is followed (grSim stamps its simulated time, which falls behind the wall clock when grSim
+// cannot keep real time: 2 % on a loaded 2-core machine), while a steady one keeps the smallest sample
+// (the delivery jitter above it is not followed). state(now)
 // predicts every track to now - offset: latency compensation of the vision processing delay and our own.
 //
 //   WorldModel model({.team = TeamColor::kBlue});
@@ -56,7 +58,8 @@ struct WorldModelConfig {
   double contact_margin = 0.03;         // m: robots closer than two radii plus this (or this close to a
                                         // wall) may be pushed: their filters do not trust the commands
   double dribbler_capture_distance = 0.1;  // m: a detection this close to a holding dribbler is used
-  double vision_clock_slowness = 0.03;  // s per s the clock offset estimate may rise (see the header)
+  double offset_drift = 1e-5;           // s per frame the clock offset estimate may rise ...
+  double vision_clock_slowness = 0.05;  // s per s ... and at most this fast with the measured rise (header)
   double carried_ball_after = 0.03;     // s without a ball detection (two camera frames): hidden ...
   double carried_ball_timeout = 1.0;    // s ... right after touching a dribbler: it moves with that robot
                                         // until this long without a detection
@@ -178,6 +181,8 @@ class WorldModel {
     time::Timestamp last_update;
   };
   time::Timestamp to_vision(time::Timestamp now) const;
+  /// One sample of (host - vision) clock, now - sent_time, at host time now (see the header's Clocks).
+  void update_offset(double sample, time::Timestamp now);
 
   WorldModelConfig config_;
   Field field_;
@@ -197,6 +202,15 @@ class WorldModel {
   std::array<time::Timestamp, kMaxRobotsPerTeam> feedback_time_{};                        // host clock
   std::optional<double> offset_;
   time::Timestamp offset_updated_;  // host clock of the frame that last updated offset_
+  // The smallest sample of the current second and of the one before (host clock of their starts), and the
+  // rate at which the offset rose between them (s/s, 0..vision_clock_slowness).
+  struct OffsetWindow {
+    time::Timestamp start;
+    double smallest = 0;
+  };
+  OffsetWindow offset_window_;
+  std::optional<OffsetWindow> last_offset_window_;
+  double offset_rise_rate_ = 0;
   VisionStamp stamp_;
   Possession possession_ = Possession::kNone;
   std::optional<std::uint32_t> possessing_robot_;
