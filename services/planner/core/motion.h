@@ -105,8 +105,8 @@ class MotionPlanner {
   /// Called once per tick before the first plan(): robots are then planned in priority order.
   virtual void begin_tick() {}
 
-  /// s from this tick until its commands act on the robots (measured, or as configured).
-  virtual void set_actuation_latency(double /*latency*/) {}
+  /// s from this tick until its commands act on the robots: as configured, or `measured` by world_model.
+  virtual void set_actuation_latency(double /*latency*/, bool /*measured*/) {}
 
   /// For planner.debug: robot `id`'s planned path this tick (team frame, every `step` s; empty without
   /// one) and how far the robot was from where last tick's plan put it (nullopt without one).

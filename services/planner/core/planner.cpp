@@ -344,8 +344,8 @@ void Planner::Impl::step(const PlannerInputs& inputs, time::Timestamp now, Plann
   if (last_now) dt = std::clamp(time::to_seconds(now - *last_now), 0.0, 0.05);
   last_now = now;
 
-  motion->set_actuation_latency(config.measured_latency && inputs.world.command_delay ? *inputs.world.command_delay
-                                                                                     : config.actuation_latency);
+  const bool measured = config.measured_latency && inputs.world.command_delay.has_value();
+  motion->set_actuation_latency(measured ? *inputs.world.command_delay : config.actuation_latency, measured);
   const wm::RefereeInfo& referee = inputs.referee;
   // The team frame world_model derived from the referee's side; never re-derived here.
   const wm::TeamFrame frame = wm::TeamFrame::with_flip(inputs.world.flipped);

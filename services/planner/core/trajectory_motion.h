@@ -64,7 +64,10 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
                     double dt) override;
   void sent(std::uint32_t id, const Vec2& velocity, double angular) override;
   void begin_tick() override;
-  void set_actuation_latency(double latency) override { params_.actuation_latency = latency; }
+  void set_actuation_latency(double latency, bool measured) override {
+    params_.actuation_latency = latency;
+    latency_measured_ = measured;
+  }
   void describe(std::uint32_t id, double step, std::vector<Vec2>& path,
                 std::optional<double>& tracking_error) const override;
 
@@ -109,6 +112,7 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
   std::array<Memory, wm::kMaxRobotsPerTeam> memory_{};
   std::uint64_t ticks_ = 0;
   double last_dt_ = 0;  // s, the tick period plan() was last called with
+  bool latency_measured_ = false;  // actuation_latency is world_model's measured delay
 };
 
 }  // namespace ssl::planner
