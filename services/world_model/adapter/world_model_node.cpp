@@ -140,6 +140,10 @@ void WorldModelNode::report_health(time::Timestamp now) {
       !last_frame_wall_ || time::to_seconds(now - *last_frame_wall_) > config_.stale_vision_timeout;
   report.level = stale ? dds::HealthLevel::kWarn : dds::HealthLevel::kOk;
   report.status = stale ? "vision stale" : "running";
+  // Our robots' measured delay from command to motion, in the status that sslctl health and the console show.
+  if (const std::optional<double> delay = model_.command_delay()) {
+    report.status += ", command delay " + std::to_string(std::lround(*delay * 1e3)) + " ms";
+  }
   report.rate_hz = static_cast<double>(published_in_period_) / std::max(1e-3, time::to_seconds(now - last_health_));
   report.latency_p50 = percentile(processing_times_, 0.5);
   report.latency_p99 = percentile(processing_times_, 0.99);
@@ -165,7 +169,7 @@ void WorldModelNode::report_health(time::Timestamp now) {
     report.counters.emplace_back(prefix + "_heading_noise_mrad",
                                  static_cast<std::uint64_t>(std::lround(camera.noise.orientation_stddev * 1e3)));
   }
-  // Our robots' delay from command to motion as measured (what the planner compensates).
+  // The same delay as a counter (what the planner compensates).
   if (const std::optional<double> delay = model_.command_delay()) {
     report.counters.emplace_back("command_delay_ms", static_cast<std::uint64_t>(std::lround(*delay * 1e3)));
   }
