@@ -452,8 +452,8 @@ int main(int argc, char** argv) {
   }
   std::printf("match series: %zu pairings x %llu seeds of 6 v 6 (division B), halves of %.0f s, strict_ai rules "
               "(auto continue, no early end or extra time), conditions %s, %u at a time\n",
-              pairings.size(), static_cast<unsigned long long>(seeds), half, ssl::planner::testing::to_string(conditions),
-              jobs);
+              pairings.size(), static_cast<unsigned long long>(seeds), half,
+              ssl::planner::testing::to_string(conditions), jobs);
   std::fflush(stdout);
   std::vector<std::vector<nlohmann::json>> results(pairings.size());
   std::mutex results_mutex;

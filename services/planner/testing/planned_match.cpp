@@ -38,14 +38,8 @@ sim::RealismConfig vision_under(Conditions conditions) {
   return conditions == Conditions::kHarsh ? sim::RealismConfig::competition() : sim::RealismConfig::realistic();
 }
 
-sim::RobotResponse response_under(Conditions conditions) {
-  switch (conditions) {
-    case Conditions::kIdeal: return sim::RobotResponse::ideal();
-    case Conditions::kRealistic: return sim::RobotResponse::realistic();
-    case Conditions::kHarsh: return sim::RobotResponse::harsh();
-  }
-  return sim::RobotResponse::ideal();
-}
+/// The simulator's robot response of the same name as the conditions.
+sim::RobotResponse response_under(Conditions conditions) { return *sim::RobotResponse::profile(to_string(conditions)); }
 
 /// A camera frame as vision.detection carries it to the built-in referee (received when it was sent).
 idl::vision::DetectionFrame detection_sample(const sim::DetectionFrame& frame) {

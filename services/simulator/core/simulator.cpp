@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include "services/simulator/core/physics/robot_kinematics.h"
@@ -179,7 +178,7 @@ std::vector<SimError> Simulator::set_commands(TeamColor team, const std::vector<
       errors.push_back({"INVALID_VALUE", "command for " + describe(key) + " has a non-finite value; ignored"});
       continue;
     }
-    if (command.kick_speed < 0 || command.kick_angle < 0 || command.kick_angle >= std::numbers::pi / 2) {
+    if (!command_valid(command)) {
       errors.push_back({"INVALID_VALUE", "command for " + describe(key) +
                                              " has a negative kick speed or a kick angle outside [0, 90) degrees; ignored"});
       continue;
@@ -193,9 +192,8 @@ std::vector<SimError> Simulator::set_commands(TeamColor team, const std::vector<
       continue;
     }
     if (options_.response.command_delay > 0) {
-      const auto delay = std::chrono::duration_cast<time::Duration>(
-          std::chrono::duration<double>(options_.response.command_delay));
-      responding_[key].in_flight.emplace_back(time() + delay, command);
+      responding_[key].in_flight.emplace_back(time() + time::duration_from_seconds(options_.response.command_delay),
+                                              command);
       continue;
     }
     act(key, command);

@@ -188,7 +188,9 @@ std::vector<double> forward_speeds(const RobotResponse& response, double duratio
   forward.velocity.x() = 1.0;
   std::vector<double> speeds;
   for (int step = 0; step < static_cast<int>(std::lround(duration / 0.002)); ++step) {
-    if (step % 5 == 0) EXPECT_TRUE(sim.set_commands(TeamColor::kBlue, {{1, forward}}).empty());
+    if (step % 5 == 0) {
+      EXPECT_TRUE(sim.set_commands(TeamColor::kBlue, {{1, forward}}).empty());
+    }
     sim.step(milliseconds(2));
     speeds.push_back(find(sim.snapshot(), {TeamColor::kBlue, 1})->velocity.norm());
   }

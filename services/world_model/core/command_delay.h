@@ -71,11 +71,10 @@ class CommandDelayEstimator {
 
   /// The estimated delay (s), once enough motion was seen.
   std::optional<double> delay() const { return delay_; }
-  /// The summed cost per candidate (for tests and diagnosis), with the candidates' delays.
-  const std::vector<double>& costs() const { return cost_; }
-  double candidate(std::size_t i) const { return params_.min_delay + params_.resolution * static_cast<double>(i); }
 
  private:
+  /// The delay of candidate i of the grid (s).
+  double candidate(std::size_t i) const { return params_.min_delay + params_.resolution * static_cast<double>(i); }
   struct Command {
     time::Timestamp at;
     geom::Vec2 velocity;

@@ -100,6 +100,8 @@ std::optional<std::string> validate_spec(const RobotSpec& s) {
   return std::nullopt;
 }
 
+}  // namespace
+
 bool command_valid(const RobotCommand& c) {
   if (!finite(c.velocity) || !finite(c.kick_speed) || !finite(c.kick_angle) || !finite(c.dribbler_rpm)) {
     return false;
@@ -110,6 +112,8 @@ bool command_valid(const RobotCommand& c) {
   if (c.kick_speed < 0) return false;
   return c.kick_angle >= 0 && c.kick_angle < std::numbers::pi / 2;
 }
+
+namespace {
 
 // The robot hull: the spec's cylinder cut by the plane x = center_to_dribbler (robot frame: x forward, y
 // left, z up), centred on the cylinder axis. An analytic support function instead of a btConvexHullShape:

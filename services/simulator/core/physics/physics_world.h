@@ -57,6 +57,9 @@ enum class BallSpin {
   kRolling,  // spin matching the velocity: the ball rolls (TeleportBall.roll of the simulation protocol)
 };
 
+/// Whether PhysicsWorld takes `command`: every value finite, kick speed >= 0, kick angle in [0, pi/2).
+bool command_valid(const RobotCommand& command);
+
 class PhysicsWorld {
  public:
   /// Builds the carpet, walls and goals of `field`, with the ball at rest on the centre mark and no
