@@ -87,6 +87,17 @@ std::vector<Budget> budgets() {
        key("match_series_passes_completed_pct")},
       {"20 seeded 6 v 6 matches: base's avoidable fouls", "fouls", D::kAtMost, 0, "-",
        key("match_series_avoidable_fouls")},
+      {"live match: in play from vision, lowest run", "%", D::kAtLeast, 70, "-", key("live_in_play_pct")},
+      {"live match 11 v 11: goals of both teams per 5 min", "goals", D::kAtLeast, 3, "-",
+       key("live_goals_per_5min_11v11")},
+      {"live match: goals of the colour with fewer / the other's", "ratio", D::kAtLeast, 0.5, "-",
+       key("live_colour_goal_ratio")},
+      {"live match: frames with two robots closer than 2 radii + 1 cm", "frames", D::kAtMost, 0, "-",
+       key("live_contact_frames")},
+      {"live match: avoidable fouls per match, both teams", "fouls", D::kAtMost, 0, "-",
+       key("live_avoidable_fouls_per_match")},
+      {"live match: balls out per 40 s in play, worst team", "balls", D::kAtMost, 1, "-",
+       key("live_balls_out_per_40s_max")},
   };
 }
 

@@ -169,7 +169,7 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half, Condit
                       .blue_penalty = a_is_blue ? a.penalty : b.penalty,
                       .yellow_penalty = a_is_blue ? b.penalty : a.penalty});
   ssl::sslctl::MatchReportBuilder report;
-  report.set_field(field.field_length, field.goal_width);
+  report.set_field(field);
   std::vector<ssl::sslctl::PlayAccount::Robot> robots;
   KickIntents kick_intents;
   std::map<std::string, std::map<std::string, double>> tactics;  // team -> tactic -> robot-frames in play

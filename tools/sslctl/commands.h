@@ -173,7 +173,7 @@ int log_info(const std::string& file, bool json, std::ostream& out, std::ostream
 struct MatchReportOptions {
   std::string file;                              // an SSL log file; empty: the live streams
   int referee_port = 10003;                      // group 224.5.23.1
-  int vision_port = 10006;                       // group 224.5.23.2 (the ball, for stalls)
+  int vision_port = 10006;                       // group 224.5.23.2 (the ball, the robots, the field's size)
   std::string interface_address = "127.0.0.1";  // the NIC on the league's network
   double duration_s = 0;                         // live: stop after this long; 0 = until Ctrl-C
   bool until_final_whistle = false;              // live: stop once the referee says POST_GAME
@@ -182,10 +182,12 @@ struct MatchReportOptions {
   std::function<void()> on_ready;
 };
 
-/// `sslctl match report [FILE]`: reads Referee packets (and SSL-Vision for the ball) live from the multicast
-/// groups until --duration / Ctrl-C, or every record of an SSL log file, and prints the match report (score
-/// and goals with their times, time in play / stopped, commands, game events by type and team, the longest
-/// stall, stages and sides). Malformed packets are counted in the report. 1 when no referee packet came or
+/// `sslctl match report [FILE]`: reads Referee packets (and SSL-Vision: the ball, the robots, the field's
+/// size) live from the multicast groups until --duration / Ctrl-C, or every record of an SSL log file, and
+/// prints the match report (score and goals with their times, time in play / stopped and in play from vision,
+/// commands, game events by type and team, placements and balls out per team, the longest stall, the closest
+/// robots and contact frames, stages and sides). Malformed packets are counted in the report. 1 when no
+/// referee packet came or
 /// the file cannot be read (a damaged file: the report of what was read, then the error).
 int match_report(const MatchReportOptions& options, ShutdownSignal& shutdown, std::ostream& out, std::ostream& err);
 

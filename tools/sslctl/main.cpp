@@ -180,8 +180,8 @@ int main(int argc, char** argv) {
   match->require_subcommand(1);
   ssl::sslctl::MatchReportOptions report;
   auto* report_cmd = match->add_subcommand(
-      "report", "score, goals, time in play, game events, stalls: live from the referee (and vision) "
-                "multicast, or from an SSL log file");
+      "report", "score, goals, time in play, game events, stalls, robot contacts: live from the referee (and "
+                "vision) multicast, or from an SSL log file");
   report_cmd->add_option("file", report.file, "SSL log file (.log or .log.gz); without one: live");
   report_cmd->add_option("--referee-port", report.referee_port, "Referee multicast port (group 224.5.23.1)")
       ->capture_default_str();

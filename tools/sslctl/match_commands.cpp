@@ -1,9 +1,10 @@
-// sslctl match report: the league's Referee stream (and SSL-Vision for the ball), live from multicast or
-// from an SSL log file, into a MatchReport (match_report.h).
+// sslctl match report: the league's Referee stream (and SSL-Vision: the ball, the robots, the field's size),
+// live from multicast or from an SSL log file, into a MatchReport (match_report.h).
 #include <array>
 #include <chrono>
 #include <optional>
 #include <ostream>
+#include <vector>
 
 #include "libs/league/decode.h"
 #include "libs/league/log_file.h"
@@ -30,16 +31,41 @@ bool add_referee(MatchReportBuilder& builder, std::span<const std::uint8_t> byte
   return true;
 }
 
-/// The most confident ball of an SSL-Vision packet into the builder (metres); false when it does not decode.
-bool add_vision(MatchReportBuilder& builder, std::span<const std::uint8_t> bytes, time::Timestamp t) {
+/// One SSL-Vision packet into the builder (metres): a camera frame's robots with its most confident ball, and
+/// the field's size from geometry (positive sizes only); false when it does not decode. `robots` is scratch.
+bool add_vision(MatchReportBuilder& builder, std::span<const std::uint8_t> bytes, time::Timestamp t,
+                std::vector<PlayAccount::Robot>& robots) {
   auto packet = league::decode_vision_wrapper(bytes);
   if (!packet) return false;
+  if (packet->has_geometry()) {
+    const SSL_GeometryFieldSize& size = packet->geometry().field();
+    if (size.field_length() > 0 && size.field_width() > 0 && size.goal_width() > 0) {
+      FieldGeometry field;
+      field.field_length = size.field_length() / 1000.0;
+      field.field_width = size.field_width() / 1000.0;
+      field.goal_width = size.goal_width() / 1000.0;
+      builder.set_field(field);
+    }
+  }
   if (!packet->has_detection()) return true;
+  const SSL_DetectionFrame& frame = packet->detection();
+  robots.clear();
+  for (auto [team, detections] : {std::pair{TeamColor::kYellow, &frame.robots_yellow()},
+                                  std::pair{TeamColor::kBlue, &frame.robots_blue()}}) {
+    for (const SSL_DetectionRobot& robot : *detections) {
+      robots.push_back(
+          {.team = team, .id = robot.robot_id(), .position = geom::Vec2(robot.x() / 1000.0, robot.y() / 1000.0)});
+    }
+  }
   const SSL_DetectionBall* best = nullptr;
-  for (const SSL_DetectionBall& ball : packet->detection().balls()) {
+  for (const SSL_DetectionBall& ball : frame.balls()) {
     if (best == nullptr || ball.confidence() > best->confidence()) best = &ball;
   }
-  if (best != nullptr) builder.on_ball(geom::Vec2(best->x() / 1000.0, best->y() / 1000.0), t);
+  if (best != nullptr) {
+    builder.on_frame(geom::Vec2(best->x() / 1000.0, best->y() / 1000.0), robots, t);
+  } else {
+    builder.on_robots(robots, t);
+  }
   return true;
 }
 
@@ -55,6 +81,7 @@ int from_file(const MatchReportOptions& options, std::ostream& out, std::ostream
     return 1;
   }
   MatchReportBuilder builder;
+  std::vector<PlayAccount::Robot> robots;
   std::optional<Error> damage;
   while (true) {
     auto record = reader->next();
@@ -67,7 +94,9 @@ int from_file(const MatchReportOptions& options, std::ostream& out, std::ostream
     const time::Timestamp t = time::Timestamp::from_nanoseconds(r.timestamp_ns);
     bool decoded = true;
     if (r.type == league::MessageType::kRefbox2013) decoded = add_referee(builder, league::byte_span(r.payload), t);
-    if (r.type == league::MessageType::kVision2014) decoded = add_vision(builder, league::byte_span(r.payload), t);
+    if (r.type == league::MessageType::kVision2014) {
+      decoded = add_vision(builder, league::byte_span(r.payload), t, robots);
+    }
     if (!decoded) builder.on_malformed();
   }
   const MatchReport report = builder.report();
@@ -106,6 +135,7 @@ int live(const MatchReportOptions& options, ShutdownSignal& shutdown, std::ostre
   if (options.on_ready) options.on_ready();
 
   MatchReportBuilder builder;
+  std::vector<PlayAccount::Robot> robots;
   time::RealClock wall;
   std::array<std::uint8_t, kDatagramBufferBytes> buffer{};
   const auto start = std::chrono::steady_clock::now();
@@ -119,7 +149,7 @@ int live(const MatchReportOptions& options, ShutdownSignal& shutdown, std::ostre
     for (int i = 0; i < 64; ++i) {
       const net::ReceiveResult received = vision_socket->receive(buffer, 0ns);
       if (!received.ok()) break;
-      if (!add_vision(builder, {buffer.data(), received.size}, wall.now())) builder.on_malformed();
+      if (!add_vision(builder, {buffer.data(), received.size}, wall.now(), robots)) builder.on_malformed();
     }
     const net::ReceiveResult received = referee_socket->receive(buffer, 5ms);
     if (received.ok() && !add_referee(builder, {buffer.data(), received.size}, wall.now())) builder.on_malformed();

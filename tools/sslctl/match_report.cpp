@@ -76,7 +76,11 @@ void MatchReportBuilder::on_referee(const referee::RefereeState& state, time::Ti
     }
   }
   const double at = since_start(t);
-  if (!previous_ || previous_->command_counter != state.command_counter) ++report_.commands[state.command];
+  if (!previous_ || previous_->command_counter != state.command_counter) {
+    ++report_.commands[state.command];
+    if (state.command == Command::kBallPlacementYellow) ++report_.yellow.placements;
+    if (state.command == Command::kBallPlacementBlue) ++report_.blue.placements;
+  }
   if (!previous_ || previous_->stage != state.stage) report_.stages.push_back({at, state.stage});
   if (state.blue_team_on_positive_half &&
       (report_.sides.empty() || report_.sides.back().blue_on_positive_half != *state.blue_team_on_positive_half)) {
@@ -128,9 +132,23 @@ void MatchReportBuilder::on_referee(const referee::RefereeState& state, time::Ti
   last_ = t;
 }
 
+void MatchReportBuilder::set_field(const FieldGeometry& field) {
+  field_ = field;
+  play_.set_field(field.field_length, field.goal_width);
+}
+
+bool MatchReportBuilder::inside_field(const geom::Vec2& ball) const {
+  return field_ && std::abs(ball.x()) <= field_->half_length() + field_->ball_radius &&
+         std::abs(ball.y()) <= field_->half_width() + field_->ball_radius;
+}
+
 void MatchReportBuilder::on_ball(const geom::Vec2& ball, time::Timestamp t) {
   if (last_ball_time_ && t < *last_ball_time_) return;
+  if (last_ball_time_ && ball_in_play_) {
+    in_play_vision_ += std::min(time::to_seconds(t - *last_ball_time_), kBallUnseenAfter);
+  }
   last_ball_time_ = t;
+  ball_in_play_ = previous_ && activity_of(previous_->command) == Activity::kInPlay && inside_field(ball);
   ++report_.ball_samples;
   if (!report_.longest_stall) report_.longest_stall = MatchReport::Stall{};
   if (!previous_ || activity_of(previous_->command) != Activity::kInPlay) {
@@ -151,9 +169,31 @@ void MatchReportBuilder::on_ball(const geom::Vec2& ball, time::Timestamp t) {
 void MatchReportBuilder::on_frame(const geom::Vec2& ball, std::span<const PlayAccount::Robot> robots,
                                   time::Timestamp t) {
   if (last_ball_time_ && t < *last_ball_time_) return;
-  ++report_.robot_frames;
   play_.on_frame(ball, robots, t);
   on_ball(ball, t);
+  on_robots(robots, t);
+}
+
+void MatchReportBuilder::on_robots(std::span<const PlayAccount::Robot> robots, time::Timestamp t) {
+  if (last_robots_time_ && t < *last_robots_time_) return;
+  last_robots_time_ = t;
+  if (robots.empty()) return;
+  ++report_.robot_frames;
+  bool contact = false;
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    for (std::size_t j = i + 1; j < robots.size(); ++j) {
+      const PlayAccount::Robot& a = robots[i];
+      const PlayAccount::Robot& b = robots[j];
+      if (a.team == b.team && a.id == b.id) continue;  // one robot detected twice
+      const double distance = (a.position - b.position).norm();
+      contact = contact || distance < kContactDistance;
+      if (!report_.closest_robots || distance < report_.closest_robots->distance) {
+        report_.closest_robots = MatchReport::ClosestRobots{
+            .distance = distance, .at = since_start(t), .first = {a.team, a.id}, .second = {b.team, b.id}};
+      }
+    }
+  }
+  if (contact) ++report_.contact_frames;
 }
 
 MatchReport MatchReportBuilder::report() const {
@@ -162,7 +202,12 @@ MatchReport MatchReportBuilder::report() const {
   out.yellow.play = play_.team(TeamColor::kYellow);
   for (const auto& [key, count] : event_counts_) {
     out.events.push_back({.type = key.first, .team = key.second, .count = count});
+    const bool ball_out = key.first == referee::GameEventType::kBallLeftFieldTouchLine ||
+                          key.first == referee::GameEventType::kBallLeftFieldGoalLine;
+    if (ball_out && key.second == Team::kYellow) out.yellow.balls_out += count;
+    if (ball_out && key.second == Team::kBlue) out.blue.balls_out += count;
   }
+  if (field_) out.in_play_vision = in_play_vision_;
   return out;
 }
 
@@ -194,12 +239,32 @@ std::string to_text(const MatchReport& r) {
                 r.in_play, percent(r.in_play, total), r.stopped, percent(r.stopped, total), r.halted,
                 percent(r.halted, total));
   out << line;
+  if (!r.in_play_vision) {
+    out << "in play from vision: unknown (no field size)\n";
+  } else {
+    std::snprintf(line, sizeof line,
+                  "in play from vision (the ball seen inside the field): %.1f s (%.0f %% of %.1f s)\n",
+                  *r.in_play_vision, percent(*r.in_play_vision, r.duration), r.duration);
+    out << line;
+  }
   if (!r.longest_stall) {
     out << "longest stall in play: unknown (no vision)\n";
   } else {
     std::snprintf(line, sizeof line, "longest stall in play: %.1f s from %s, ball at (%.2f, %.2f)\n",
                   r.longest_stall->seconds, clock_text(r.longest_stall->from).c_str(), r.longest_stall->ball.x(),
                   r.longest_stall->ball.y());
+    out << line;
+  }
+  if (!r.closest_robots) {
+    out << "robots: no frame with two robots\n";
+  } else {
+    const MatchReport::ClosestRobots& c = *r.closest_robots;
+    std::snprintf(line, sizeof line,
+                  "robots: closest two %.3f m apart at %s (%s %u, %s %u); contact frames (centres under %.2f m, "
+                  "per camera frame) %llu\n",
+                  c.distance, clock_text(c.at).c_str(), std::string(to_string(c.first.team)).c_str(), c.first.id,
+                  std::string(to_string(c.second.team)).c_str(), c.second.id, MatchReportBuilder::kContactDistance,
+                  static_cast<unsigned long long>(r.contact_frames));
     out << line;
   }
   out << "commands:";
@@ -211,6 +276,8 @@ std::string to_text(const MatchReport& r) {
   out << "fouls: yellow " << r.yellow.fouls << ", blue " << r.blue.fouls << "; cards: yellow " << r.yellow.yellow_cards
       << " yellow / " << r.yellow.red_cards << " red, blue " << r.blue.yellow_cards << " yellow / " << r.blue.red_cards
       << " red\n";
+  out << "placements: yellow " << r.yellow.placements << ", blue " << r.blue.placements << "; balls out: yellow "
+      << r.yellow.balls_out << ", blue " << r.blue.balls_out << '\n';
   if (r.robot_frames > 0) {
     const double possessed = r.yellow.play.possession + r.blue.play.possession;
     for (auto [name, team] : {std::pair{"yellow", &r.yellow}, std::pair{"blue", &r.blue}}) {
@@ -252,7 +319,8 @@ std::string to_json(const MatchReport& r) {
   for (auto [key, line] : {std::pair{"yellow", &r.yellow}, std::pair{"blue", &r.blue}}) {
     out["teams"][key] = {{"name", line->name},           {"score", line->score},
                          {"fouls", line->fouls},         {"yellow_cards", line->yellow_cards},
-                         {"red_cards", line->red_cards}};
+                         {"red_cards", line->red_cards}, {"placements", line->placements},
+                         {"balls_out", line->balls_out}};
     if (r.robot_frames > 0) {
       const TeamPlay& p = line->play;
       out["teams"][key]["play"] = {{"passes_tried", p.passes_tried}, {"passes_completed", p.passes_completed},
@@ -271,7 +339,22 @@ std::string to_json(const MatchReport& r) {
     if (goal.by_bot) g["by_bot"] = *goal.by_bot;
     out["goals"].push_back(g);
   }
-  out["time_s"] = {{"in_play", r.in_play}, {"stopped", r.stopped}, {"halted", r.halted}};
+  out["time_s"] = {{"in_play", r.in_play}, {"stopped", r.stopped}, {"halted", r.halted}, {"in_play_vision", nullptr}};
+  out["in_play_vision_share"] = nullptr;  // of duration_s
+  if (r.in_play_vision) {
+    out["time_s"]["in_play_vision"] = *r.in_play_vision;
+    out["in_play_vision_share"] = r.duration > 0 ? *r.in_play_vision / r.duration : 0;
+  }
+  out["closest_robots"] = nullptr;
+  if (r.closest_robots) {
+    const MatchReport::ClosestRobots& c = *r.closest_robots;
+    out["closest_robots"] = {{"distance_m", c.distance},
+                             {"at_s", c.at},
+                             {"robots",
+                              {{{"team", std::string(to_string(c.first.team))}, {"id", c.first.id}},
+                               {{"team", std::string(to_string(c.second.team))}, {"id", c.second.id}}}}};
+  }
+  out["contact_frames"] = r.contact_frames;
   if (r.longest_stall) {
     out["longest_stall"] = {{"seconds", r.longest_stall->seconds},
                             {"from_s", r.longest_stall->from},

@@ -1,6 +1,7 @@
-// MatchReport: what a match was, from its referee stream (and, for stalls, the ball): the score and the
-// goals with their times, time in play / stopped / halted, restarts and commands, game events by type and
-// team, the longest stall, side and stage changes, and whether the final whistle came. Pure: no sockets,
+// MatchReport: what a match was, from its referee stream (and vision: the ball, the robots): the score and
+// the goals with their times, time in play / stopped / halted and in play from vision, restarts and
+// commands, game events by type and team, placements and balls out per team, the longest stall, the closest
+// two robots and the contact frames, side and stage changes, and whether the final whistle came. Pure: no sockets,
 // no clocks, no protobuf; the caller feeds samples with their times (any one clock, e.g. a log file's
 // receive times or the simulated clock of a lockstep match). `sslctl match report` feeds it from a live
 // referee (and vision) multicast or an SSL log file; the lockstep match test and bench/match_lockstep feed
@@ -15,11 +16,21 @@
 //    again, so events are recognised by ssl::referee::event_key (their id when the referee gave one).
 //  * a stall: while in play, the longest time the ball stayed within kStallDistance of where it was; it
 //    ends when the ball moves that far or play stops. Unknown without ball samples.
+//  * in play from vision: time in play (as above) with the ball seen inside the field (not yet wholly over a
+//    field line). Each interval between two ball observations counts for the earlier one, at most
+//    kBallUnseenAfter (a ball unseen longer is not seen). Unknown without the field's size (set_field).
+//  * robots (on_frame, on_robots), whatever the referee says: the closest two robots (centres, any teams) and
+//    the contact frames, frames with two centres closer than kContactDistance. Counted per frame as
+//    delivered: vision sends one frame per camera, so an instant seen by two cameras counts twice, and two
+//    robots in contact on the seam between two cameras count once per camera that sees both.
+//  * per team: placements (BALL_PLACEMENT_<team> commands issued) and balls out (BALL_LEFT_FIELD_TOUCH_LINE
+//    and _GOAL_LINE events by the team, which kicked it out).
 //
 //   MatchReportBuilder builder;
 //   builder.on_referee(state, t);    // every referee sample, in time order
 //   builder.on_ball(position, t);    // every ball observation (m, vision frame), in time order
 //   builder.on_frame(ball, robots, t);  // or the ball with every robot seen: also passes, shots, possession
+//   builder.on_robots(robots, t);       // a frame with robots and no ball: the robots' figures only
 //   std::cout << to_text(builder.report());
 #pragma once
 
@@ -31,6 +42,8 @@
 #include <string>
 #include <vector>
 
+#include "libs/common/team.h"
+#include "libs/domain/field.h"
 #include "libs/geometry/vec2.h"
 #include "libs/time/time.h"
 #include "services/referee_gateway/core/types.h"
@@ -45,6 +58,8 @@ struct MatchReport {
     std::uint32_t fouls = 0;  // the referee's foul counter at the end
     std::uint32_t yellow_cards = 0;
     std::uint32_t red_cards = 0;
+    std::uint32_t placements = 0;  // BALL_PLACEMENT_<team> commands: this team placed the ball
+    std::uint32_t balls_out = 0;   // BALL_LEFT_FIELD_* events by this team: it kicked the ball out
     TeamPlay play;  // passes, shots, possession (PlayAccount), from frames with robots
   };
   struct Goal {
@@ -64,6 +79,16 @@ struct MatchReport {
     double from = 0;  // s since the first referee sample
     geom::Vec2 ball = geom::Vec2::Zero();
   };
+  struct RobotId {
+    TeamColor team = TeamColor::kBlue;
+    std::uint32_t id = 0;
+  };
+  struct ClosestRobots {
+    double distance = 0;  // m, centre to centre
+    double at = 0;        // s since the first referee sample (0 before it)
+    RobotId first;
+    RobotId second;
+  };
   struct StageChange {
     double at = 0;
     referee::Stage stage = referee::Stage::kNormalFirstHalfPre;
@@ -76,7 +101,7 @@ struct MatchReport {
   std::string source;  // the referee's source_identifier
   std::uint64_t referee_samples = 0;
   std::uint64_t ball_samples = 0;
-  std::uint64_t robot_frames = 0;  // frames with robots (on_frame): the play figures count
+  std::uint64_t robot_frames = 0;  // frames with at least one robot (on_frame, on_robots)
   double duration = 0;  // s from the first to the last referee sample
   TeamLine yellow;
   TeamLine blue;
@@ -84,6 +109,9 @@ struct MatchReport {
   double in_play = 0;  // s
   double stopped = 0;  // s
   double halted = 0;   // s
+  std::optional<double> in_play_vision;         // s, the ball seen inside the field; nullopt: no field size
+  std::optional<ClosestRobots> closest_robots;  // nullopt before a frame with two robots
+  std::uint64_t contact_frames = 0;             // frames with two robot centres closer than kContactDistance
   std::map<referee::Command, std::uint32_t> commands;  // how often each command was issued
   std::vector<EventCount> events;                       // by type, then team
   std::optional<Stall> longest_stall;                   // nullopt without ball samples
@@ -96,17 +124,23 @@ struct MatchReport {
 
 class MatchReportBuilder {
  public:
-  static constexpr double kStallDistance = 0.05;  // m: the ball moved (rules: in play after 0.05 m)
+  static constexpr double kStallDistance = 0.05;   // m: the ball moved (rules: in play after 0.05 m)
+  static constexpr double kBallUnseenAfter = 0.2;  // s between ball observations: longer, the ball was not seen
+  /// m between two robot centres: closer is a contact (two robots of the rules' largest radius, plus 1 cm).
+  static constexpr double kContactDistance = 2 * FieldGeometry{}.max_robot_radius + 0.01;
 
   /// One referee sample at `t` (samples before the previous one are ignored).
   void on_referee(const referee::RefereeState& state, time::Timestamp t);
   /// One ball observation at `t`, metres in any fixed frame.
   void on_ball(const geom::Vec2& ball, time::Timestamp t);
-  /// The ball and every robot seen at `t` (the same frame): on_ball, and the play account's passes, shots
-  /// and possession.
+  /// The ball and every robot seen at `t` (the same frame): on_ball, on_robots, and the play account's
+  /// passes, shots and possession.
   void on_frame(const geom::Vec2& ball, std::span<const PlayAccount::Robot> robots, time::Timestamp t);
-  /// The field's length and goal width (m), for shots.
-  void set_field(double length, double goal_width) { play_.set_field(length, goal_width); }
+  /// Every robot of a frame at `t` without the ball: the closest robots and contact frames (frames before the
+  /// previous one are ignored).
+  void on_robots(std::span<const PlayAccount::Robot> robots, time::Timestamp t);
+  /// The field's size (its length, width, goal width and ball radius are read): shots, in play from vision.
+  void set_field(const FieldGeometry& field);
   bool final_whistle() const { return report_.final_whistle; }
   /// Counts a packet that did not decode.
   void on_malformed() { ++report_.malformed; }
@@ -118,6 +152,8 @@ class MatchReportBuilder {
   enum class Activity { kInPlay, kStopped, kHalted };
   static Activity activity_of(referee::Command command);
   double since_start(time::Timestamp t) const;
+  /// The ball not yet wholly over a field line; false without the field's size.
+  bool inside_field(const geom::Vec2& ball) const;
   void close_stall(time::Timestamp t);
 
   MatchReport report_;
@@ -130,6 +166,10 @@ class MatchReportBuilder {
   // The stall being measured: where the ball rests since when (only while in play).
   std::optional<std::pair<geom::Vec2, time::Timestamp>> stall_anchor_;
   std::optional<time::Timestamp> last_ball_time_;
+  bool ball_in_play_ = false;  // at the last ball observation: in play, and the ball inside the field
+  double in_play_vision_ = 0;  // s
+  std::optional<time::Timestamp> last_robots_time_;
+  std::optional<FieldGeometry> field_;
   PlayAccount play_;
 };
 

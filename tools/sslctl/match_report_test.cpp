@@ -6,9 +6,11 @@
 #include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "libs/league/decode.h"
 #include "libs/league/log_file.h"
@@ -175,6 +177,139 @@ TEST(MatchReport, TextAndJsonCarryTheSameFacts) {
   EXPECT_EQ(json["final_whistle"], true);
 }
 
+using Robot = PlayAccount::Robot;
+
+/// Yellow 3 at the origin, blue 5 `distance` m from it along x, blue 1 far away.
+std::vector<Robot> two_robots_apart(double distance) {
+  return {Robot{.team = TeamColor::kYellow, .id = 3, .position = Vec2(0, 0)},
+          Robot{.team = TeamColor::kBlue, .id = 5, .position = Vec2(distance, 0)},
+          Robot{.team = TeamColor::kBlue, .id = 1, .position = Vec2(2, 2)}};
+}
+
+TEST(MatchReport, TwoRobotCentresCloserThanTwoRadiiAndACentimetreMakeAContactFrame) {
+  EXPECT_DOUBLE_EQ(MatchReportBuilder::kContactDistance, 0.19);
+  MatchReportBuilder builder;
+  builder.on_referee(small_match().samples[0].second, at(0));
+  builder.on_robots(two_robots_apart(0.195), at(1));
+  MatchReport report = builder.report();
+  EXPECT_EQ(report.contact_frames, 0u) << "0.195 m apart is no contact";
+  ASSERT_TRUE(report.closest_robots);
+  EXPECT_DOUBLE_EQ(report.closest_robots->distance, 0.195);
+
+  builder.on_frame(Vec2(1, 1), two_robots_apart(0.185), at(2));
+  builder.on_robots(two_robots_apart(0.185), at(2));  // a second camera's frame of the same instant
+  builder.on_robots(two_robots_apart(0.3), at(3));
+  report = builder.report();
+  EXPECT_EQ(report.contact_frames, 2u) << "0.185 m apart, counted per frame as delivered";
+  EXPECT_EQ(report.robot_frames, 4u);
+  ASSERT_TRUE(report.closest_robots);
+  EXPECT_DOUBLE_EQ(report.closest_robots->distance, 0.185);
+  EXPECT_DOUBLE_EQ(report.closest_robots->at, 2);
+  EXPECT_EQ(report.closest_robots->first.team, TeamColor::kYellow);
+  EXPECT_EQ(report.closest_robots->first.id, 3u);
+  EXPECT_EQ(report.closest_robots->second.team, TeamColor::kBlue);
+  EXPECT_EQ(report.closest_robots->second.id, 5u);
+  EXPECT_NE(to_text(report).find("closest two 0.185 m apart at 0:02.0 (yellow 3, blue 5); contact frames"),
+            std::string::npos)
+      << to_text(report);
+  const auto json = nlohmann::json::parse(to_json(report));
+  EXPECT_EQ(json["contact_frames"], 2);
+  EXPECT_DOUBLE_EQ(json["closest_robots"]["distance_m"].get<double>(), 0.185);
+  EXPECT_EQ(json["closest_robots"]["robots"][1]["team"], "blue");
+  EXPECT_EQ(json["closest_robots"]["robots"][1]["id"], 5);
+}
+
+TEST(MatchReport, ARobotDetectedTwiceInOneFrameIsNoContact) {
+  MatchReportBuilder builder;
+  const Robot robot{.team = TeamColor::kBlue, .id = 2, .position = Vec2(1, 1)};
+  const std::vector<Robot> twice = {robot, robot, Robot{.team = TeamColor::kYellow, .id = 2, .position = Vec2(3, 1)}};
+  builder.on_robots(twice, at(0));
+  const MatchReport report = builder.report();
+  EXPECT_EQ(report.contact_frames, 0u);
+  ASSERT_TRUE(report.closest_robots);
+  EXPECT_DOUBLE_EQ(report.closest_robots->distance, 2.0);
+}
+
+/// small_match() with a ball observation every 0.1 s from 0 to 49.9 s: inside the 9 x 6 m field but from 20 to
+/// 30 s, when it lies beyond the touch line (y 3.1 m).
+MatchReport with_ball_in_and_out(bool with_field) {
+  MatchReportBuilder builder;
+  if (with_field) builder.set_field(FieldGeometry::division_b());
+  const Script s = small_match();
+  std::size_t next = 0;
+  for (int i = 0; i < 500; ++i) {
+    const double t = i / 10.0;
+    while (next < s.samples.size() && s.samples[next].first < t) {
+      builder.on_referee(s.samples[next].second, at(s.samples[next].first));
+      ++next;
+    }
+    builder.on_ball(t >= 20 && t < 30 ? Vec2(1, 3.1) : Vec2(1, 2.9), at(t));
+  }
+  for (; next < s.samples.size(); ++next) builder.on_referee(s.samples[next].second, at(s.samples[next].first));
+  return builder.report();
+}
+
+TEST(MatchReport, InPlayFromVisionCountsOnlyWhileRunningWithTheBallInsideTheField) {
+  const MatchReport report = with_ball_in_and_out(true);
+  EXPECT_DOUBLE_EQ(report.in_play, 28) << "the referee's game ran 4-14, 20-30 and 42-50 s";
+  ASSERT_TRUE(report.in_play_vision);
+  // Each observation counts until the next one, for the referee's command before it: 4.1-14.1 s (the one at
+  // 4.0 s came before NORMAL_START, the one at 14.0 s before STOP), 30.0-30.1 s (back inside, before HALT)
+  // and 42.1-49.9 s (the last observation); 20-30 s the ball lies out of the field.
+  EXPECT_NEAR(*report.in_play_vision, 10 + 0.1 + 7.8, 1e-6);
+  const auto json = nlohmann::json::parse(to_json(report));
+  EXPECT_NEAR(json["time_s"]["in_play_vision"].get<double>(), 17.9, 1e-6);
+  EXPECT_NEAR(json["in_play_vision_share"].get<double>(), 17.9 / 50, 1e-6);
+  EXPECT_NE(to_text(report).find("in play from vision (the ball seen inside the field): 17.9 s (36 % of 50.0 s)"),
+            std::string::npos)
+      << to_text(report);
+}
+
+TEST(MatchReport, WithoutTheFieldSizeInPlayFromVisionIsUnknown) {
+  const MatchReport report = with_ball_in_and_out(false);
+  EXPECT_FALSE(report.in_play_vision);
+  EXPECT_NE(to_text(report).find("in play from vision: unknown"), std::string::npos);
+  EXPECT_TRUE(nlohmann::json::parse(to_json(report))["time_s"]["in_play_vision"].is_null());
+}
+
+TEST(MatchReport, ABallUnseenForLongCountsOnlyUntilItIsNoLongerSeen) {
+  MatchReportBuilder builder;
+  builder.set_field(FieldGeometry::division_b());
+  Script s;
+  s.command(0, Command::kForceStart, Stage::kNormalFirstHalf);
+  builder.on_referee(s.samples[0].second, at(0));
+  builder.on_ball(Vec2(0, 0), at(1));
+  builder.on_ball(Vec2(0, 0), at(4));  // 3 s unseen
+  builder.on_ball(Vec2(0, 0), at(4.1));
+  EXPECT_NEAR(*builder.report().in_play_vision, MatchReportBuilder::kBallUnseenAfter + 0.1, 1e-6);
+}
+
+TEST(MatchReport, PlacementsAndBallsOutPerTeam) {
+  Script s;
+  s.command(0, Command::kForceStart, Stage::kNormalFirstHalf);
+  s.state.game_events = {
+      GameEvent{.id = "o1", .type = GameEventType::kBallLeftFieldTouchLine, .by_team = Team::kYellow}};
+  s.command(5, Command::kBallPlacementBlue, Stage::kNormalFirstHalf);
+  s.repeat(6);
+  s.command(8, Command::kDirectFreeBlue, Stage::kNormalFirstHalf);
+  s.state.game_events = {
+      GameEvent{.id = "o2", .type = GameEventType::kBallLeftFieldGoalLine, .by_team = Team::kYellow}};
+  s.command(12, Command::kBallPlacementBlue, Stage::kNormalFirstHalf);
+  s.command(15, Command::kDirectFreeBlue, Stage::kNormalFirstHalf);
+  s.state.game_events = {GameEvent{.id = "o3", .type = GameEventType::kBallLeftFieldTouchLine, .by_team = Team::kBlue}};
+  s.command(20, Command::kBallPlacementYellow, Stage::kNormalFirstHalf);
+  const MatchReport report = build(s);
+  EXPECT_EQ(report.blue.placements, 2u) << "the repeated packet at 6 s is no new command";
+  EXPECT_EQ(report.yellow.placements, 1u);
+  EXPECT_EQ(report.yellow.balls_out, 2u);
+  EXPECT_EQ(report.blue.balls_out, 1u);
+  EXPECT_NE(to_text(report).find("placements: yellow 1, blue 2; balls out: yellow 2, blue 1"), std::string::npos)
+      << to_text(report);
+  const auto json = nlohmann::json::parse(to_json(report));
+  EXPECT_EQ(json["teams"]["blue"]["placements"], 2);
+  EXPECT_EQ(json["teams"]["yellow"]["balls_out"], 2);
+}
+
 TEST(MatchReport, SamplesGoingBackInTimeAreIgnored) {
   MatchReportBuilder builder;
   Script s = small_match();
@@ -188,9 +323,28 @@ TEST(MatchReport, SamplesGoingBackInTimeAreIgnored) {
 
 std::string referee_bytes(const RefereeState& state) { return referee::to_proto(state).SerializeAsString(); }
 
-std::string vision_bytes(const Vec2& ball_m) {
+/// A camera frame with the ball and `robots` (metres), and with the field's geometry when `field` is given.
+std::string vision_bytes(const Vec2& ball_m, const std::vector<Robot>& robots = {},
+                         const std::optional<FieldGeometry>& field = std::nullopt) {
   SSL_WrapperPacket packet;
+  if (field) {
+    SSL_GeometryFieldSize* size = packet.mutable_geometry()->mutable_field();
+    size->set_field_length(static_cast<int>(field->field_length * 1000));
+    size->set_field_width(static_cast<int>(field->field_width * 1000));
+    size->set_goal_width(static_cast<int>(field->goal_width * 1000));
+    size->set_goal_depth(static_cast<int>(field->goal_depth * 1000));
+    size->set_boundary_width(static_cast<int>(field->boundary_width * 1000));
+  }
   SSL_DetectionFrame* frame = packet.mutable_detection();
+  for (const Robot& robot : robots) {
+    SSL_DetectionRobot* seen = robot.team == TeamColor::kBlue ? frame->add_robots_blue() : frame->add_robots_yellow();
+    seen->set_confidence(0.9f);
+    seen->set_robot_id(robot.id);
+    seen->set_x(static_cast<float>(robot.position.x() * 1000));
+    seen->set_y(static_cast<float>(robot.position.y() * 1000));
+    seen->set_pixel_x(0);
+    seen->set_pixel_y(0);
+  }
   frame->set_frame_number(1);
   frame->set_t_capture(1.7e9);
   frame->set_t_sent(1.7e9);
@@ -276,8 +430,9 @@ TEST(MatchReportCommand, ReadsTheLiveRefereeAndVisionMulticast) {
   const auto send = [](net::MulticastSender& sender, const std::string& bytes) {
     EXPECT_TRUE(sender.send({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}));
   };
+  send(*vision_out, vision_bytes({0.5, 0.5}, {}, FieldGeometry::division_b()));
   for (const auto& [t, state] : small_match().samples) {
-    send(*vision_out, vision_bytes({0.5, 0.5}));
+    send(*vision_out, vision_bytes({0.5, 0.5}, two_robots_apart(0.15)));
     if (state.stage == Stage::kPostGame) send(*referee_out, "garbage");
     send(*referee_out, referee_bytes(state));
   }
@@ -289,6 +444,11 @@ TEST(MatchReportCommand, ReadsTheLiveRefereeAndVisionMulticast) {
   EXPECT_EQ(json["final_whistle"], true);
   EXPECT_GE(json["ball_samples"].get<int>(), 1);
   EXPECT_EQ(json["malformed_packets"], 1);
+  // The robots and the field's size of the vision packets.
+  EXPECT_GE(json["robot_frames"].get<int>(), 1);
+  EXPECT_EQ(json["contact_frames"], json["robot_frames"]) << "every frame with robots has two 0.15 m apart";
+  EXPECT_NEAR(json["closest_robots"]["distance_m"].get<double>(), 0.15, 1e-4);
+  EXPECT_FALSE(json["time_s"]["in_play_vision"].is_null()) << "the geometry packet gave the field's size";
 }
 
 }  // namespace
