@@ -8,7 +8,9 @@
 #pragma once
 
 #include <array>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "libs/domain/world.h"
 
@@ -68,6 +70,18 @@ class Field {
 
   bool in_field(const Vec2& p, double margin = 0) const {
     return std::abs(p.x()) <= half_length() + margin && std::abs(p.y()) <= half_width() + margin;
+  }
+  /// m from `from` (inside the field) along the unit direction `u` until a field line is crossed: how far a
+  /// ball sent that way stays in. 0 from a point on or outside a line it is moving across.
+  double distance_inside(const Vec2& from, const Vec2& u) const {
+    double distance = std::numeric_limits<double>::infinity();
+    for (int axis = 0; axis < 2; ++axis) {
+      const double limit = axis == 0 ? half_length() : half_width();
+      if (std::abs(u[axis]) < 1e-12) continue;
+      const double edge = u[axis] > 0 ? limit : -limit;
+      distance = std::min(distance, std::max(0.0, (edge - from[axis]) / u[axis]));
+    }
+    return distance;
   }
   bool in_our_half(const Vec2& p) const { return p.x() < 0; }
   bool in_our_defense_area(const Vec2& p, double margin = 0) const {

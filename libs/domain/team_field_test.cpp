@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace ssl::wm {
 namespace {
 
@@ -36,6 +38,19 @@ TEST(WorldModelField, AreasContainTheRightPoints) {
   EXPECT_FALSE(field.in_field({4.6, 0}));
   EXPECT_TRUE(field.in_center_circle({0.3, 0.3}));
   EXPECT_TRUE(field.in_our_half({-0.1, 2}));
+}
+
+TEST(WorldModelField, DistanceInsideIsToTheFirstLineCrossed) {
+  const Field field;  // division A: 12 x 9
+  EXPECT_NEAR(field.distance_inside({0, 0}, {1, 0}), 6.0, 1e-12);
+  EXPECT_NEAR(field.distance_inside({0, 0}, {0, -1}), 4.5, 1e-12);
+  // Diagonal from the centre: the touch line (4.5 / sin 45) comes before the goal line (6 / cos 45).
+  const double d = std::sqrt(0.5);
+  EXPECT_NEAR(field.distance_inside({0, 0}, {d, d}), 4.5 / d, 1e-9);
+  EXPECT_NEAR(field.distance_inside({-5.0, 4.0}, {-d, d}), 0.5 / d, 1e-9);
+  // On the touch line moving out: nothing left; moving along it: the goal line.
+  EXPECT_EQ(field.distance_inside({1.0, 4.5}, {0, 1}), 0.0);
+  EXPECT_NEAR(field.distance_inside({1.0, 4.5}, {1, 0}), 5.0, 1e-12);
 }
 
 }  // namespace

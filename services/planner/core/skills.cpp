@@ -75,6 +75,11 @@ constexpr double kAreaEdgeClosingSpeed = 0.5;
 constexpr double kAreaEdgeClearance = 0.15;
 /// m a ball on our goal line beside a post is pulled out by the robot clearing it (clear_ball).
 constexpr double kPullOffGoalLine = 0.4;
+/// m before the first field line on its way that a cleared ball or a long ball comes to rest (the straight
+/// ball model's error and a bounce off a robot stay inside).
+constexpr double kStopInsideField = 1.0;
+/// m of field a clearing direction leaves before a line at the least; fewer only when no direction has it.
+constexpr double kClearMinRoom = 3.0;
 
 /// Whether the ball lies within `clearance` (m) of either defense area.
 bool ball_near_a_defense_area(const Situation& s, double clearance) {
@@ -386,27 +391,45 @@ MotionIntent turn_with_ball(const Situation& s, const wm::RobotState& robot, con
   return intent;
 }
 
+double kick_speed_to_rest_after(double distance) {
+  // Sliding from v to k v at acc_slide, then rolling to rest at acc_roll:
+  //   distance = v^2 (1 - k^2) / (2 |acc_slide|) + k^2 v^2 / (2 |acc_roll|).
+  const wm::BallModel model;
+  const double k2 = model.k_switch * model.k_switch;
+  const double per_v2 = (1 - k2) / (2 * std::abs(model.acc_slide)) + k2 / (2 * std::abs(model.acc_roll));
+  return std::sqrt(std::max(0.0, distance) / per_v2);
+}
+
+double kick_speed_kept_in(const Situation& s, const Vec2& u, double speed, double stop_inside) {
+  return std::min(speed, kick_speed_to_rest_after(s.field.distance_inside(s.ball, u) - stop_inside));
+}
+
 MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const ClearParams& p) {
   // Directions from straight upfield to 80 degrees either side whose kicking spot behind the ball lies on
-  // the field (a ball on the goal line is cleared along it): the one whose nearest opponent (within 3 m of
-  // the ball) is angularly furthest away. None: straight away from our goal centre.
+  // the field (a ball on the goal line is cleared along it) and that leave kClearMinRoom of field before a
+  // line (any, when none does): the one whose nearest opponent (within 3 m of the ball) is angularly
+  // furthest away. None: straight away from our goal centre. The ball is kicked to come to rest inside.
   Vec2 best = geom::normalized_or(s.ball - s.field.our_goal_center(), Vec2(1, 0));
   double best_room = -1;
   const double behind = dribbler_distance(s) + 0.2;  // where approach_ball takes the robot
-  for (int i = -8; i <= 8; ++i) {
-    const double angle = i * 0.1;
-    const Vec2 u(std::cos(angle), std::sin(angle));
-    if (!s.field.in_field(s.ball - u * behind, s.zones.field_margin)) continue;
-    double room = M_PI;
-    for (const wm::RobotState& enemy : s.enemies) {
-      const Vec2 d = enemy.position - s.ball;
-      if (d.norm() > 3.0 || d.norm() < 1e-6) continue;
-      room = std::min(room, std::acos(std::clamp(d.normalized().dot(u), -1.0, 1.0)));
+  for (const double min_room : {kClearMinRoom, 0.0}) {
+    for (int i = -8; i <= 8; ++i) {
+      const double angle = i * 0.1;
+      const Vec2 u(std::cos(angle), std::sin(angle));
+      if (!s.field.in_field(s.ball - u * behind, s.zones.field_margin)) continue;
+      if (s.field.distance_inside(s.ball, u) < min_room) continue;
+      double room = M_PI;
+      for (const wm::RobotState& enemy : s.enemies) {
+        const Vec2 d = enemy.position - s.ball;
+        if (d.norm() > 3.0 || d.norm() < 1e-6) continue;
+        room = std::min(room, std::acos(std::clamp(d.normalized().dot(u), -1.0, 1.0)));
+      }
+      if (room > best_room + 1e-6) {
+        best_room = room;
+        best = u;
+      }
     }
-    if (room > best_room + 1e-6) {
-      best_room = room;
-      best = u;
-    }
+    if (best_room >= 0) break;
   }
   if (best_room < 0 && std::abs(s.ball.y()) > s.field.size().goal_width / 2) {
     // On our goal line beside a post: no kicking spot behind the ball on the field, and along the line the
@@ -420,7 +443,7 @@ MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const C
     intent.skill = skill_name(Skill::kClear);
     return intent;
   }
-  return kick_along(s, robot, best, p.speed, Skill::kClear);
+  return kick_along(s, robot, best, kick_speed_kept_in(s, best, p.speed, kStopInsideField), Skill::kClear);
 }
 
 MotionIntent shoot(const Situation& s, const wm::RobotState& robot, const ShootParams& p) {
@@ -430,7 +453,11 @@ MotionIntent shoot(const Situation& s, const wm::RobotState& robot, const ShootP
     approach_ball(s, robot, u, intent);
     return intent;
   }
-  return kick_along(s, robot, u, p.speed.value_or(s.config->kick_speed), Skill::kShoot);
+  double speed = p.speed.value_or(s.config->kick_speed);
+  if ((s.field.their_goal_center() - s.ball).norm() > kShotRange) {
+    speed = kick_speed_kept_in(s, u, speed, kStopInsideField);
+  }
+  return kick_along(s, robot, u, speed, Skill::kShoot);
 }
 
 MotionIntent stop(const Situation& s, const wm::RobotState& /*robot*/, const StopParams& /*p*/) {

@@ -78,7 +78,8 @@ struct TurnWithBallParams {
 struct ClearParams {
   double speed = rules::kMaxBallSpeed - 1.0;  // m/s
 };
-/// Shoot at the widest part of their goal left open by the robots, as seen from the ball.
+/// Shoot at the widest part of their goal left open by the robots, as seen from the ball. Beyond kShotRange
+/// the ball is played towards it to stop before their goal line, not out of the field.
 /// Beyond `max_distance` from their goal centre it only gets behind the ball and moves with it (a penalty's
 /// attacker running with the ball it played on), kicking once the ball is in range.
 struct ShootParams {
@@ -158,6 +159,16 @@ MotionIntent run_skill(const Situation& s, const wm::RobotState& robot, const Sk
 double dribbler_distance(const Situation& s);
 /// rad, the heading that faces `to` from `from`.
 double heading_to(const Vec2& from, const Vec2& to);
+
+/// m from their goal centre beyond which a shot has no chance (shot_quality 0): a ball kicked at the goal
+/// from further is a long ball, played to stop before their goal line (shoot).
+inline constexpr double kShotRange = 7.0;
+/// m/s a flat kick needs for the ball to come to rest `distance` m away: it slides, then rolls, as the
+/// league's straight-ball model (wm::BallModel's defaults) says.
+double kick_speed_to_rest_after(double distance);
+/// The fastest kick (m/s, at most `speed`) along the unit direction `u` from the ball that comes to rest
+/// `stop_inside` m before the first field line on its way.
+double kick_speed_kept_in(const Situation& s, const Vec2& u, double speed, double stop_inside);
 
 /// The widest part of their goal mouth that no robot (but `shooter`) hides, seen from `from`: its angle (rad,
 /// 0 when all of it is hidden) and its middle on the goal line (the goal centre when hidden).

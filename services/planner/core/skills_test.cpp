@@ -300,6 +300,54 @@ TEST(Skills, ClearKicksAwayFromOurGoalWhereNoOpponentIs) {
   EXPECT_LT(direction.y(), -0.3) << "away from the two opponents ahead and to the left";
 }
 
+TEST(Skills, AKickAtTheSpeedToRestAfterADistanceRestsThere) {
+  // The straight-ball model stepped at 1 ms: slide at 3 m/s^2 to 0.7 of the kick speed, then roll at 0.35.
+  for (const double distance : {1.0, 4.0, 9.0}) {
+    double v = kick_speed_to_rest_after(distance);
+    const double switch_speed = 0.7 * v;
+    double travelled = 0;
+    while (v > 0) {
+      travelled += v * 1e-3;
+      v -= (v > switch_speed ? 3.0 : 0.35) * 1e-3;
+    }
+    EXPECT_NEAR(travelled, distance, 0.02 * distance) << distance;
+  }
+  EXPECT_EQ(kick_speed_to_rest_after(-1.0), 0.0);
+}
+
+TEST(Skills, AClearComesToRestInsideTheField) {
+  // Ball 0.4 m off our left touch line (division B: 9 x 6), opponents straight upfield and to the right: the
+  // widest room is towards the line, but the ball must not cross it.
+  Scene scene({-3, 2.6});
+  scene.enemies = {enemy_at({-1.5, 2.6}, 1), enemy_at({-2, 1.5}, 2)};
+  wm::RobotState robot = robot_at({-3.5, 2.6}, 0);
+  MotionIntent intent = clear_ball(scene.situation(), robot, {});
+  const Vec2 u = geom::Angle::from_radians(intent.orientation).to_unit_vector();
+  const double room = scene.s.field.distance_inside(scene.s.ball, u);
+  EXPECT_GE(room, 3.0) << "a direction with at least 3 m of field before a line";
+  // Behind the ball facing that way: the kick's speed rests the ball 1 m inside the field.
+  robot = robot_at(scene.s.ball - u * (kDribbler + 0.005), intent.orientation, 0);
+  intent = clear_ball(scene.situation(), robot, {});
+  ASSERT_EQ(intent.kick, KickType::kFlat);
+  EXPECT_NEAR(intent.kick_speed, kick_speed_to_rest_after(room - 1.0), 1e-9);
+  EXPECT_LT(intent.kick_speed, ClearParams{}.speed);
+}
+
+TEST(Skills, ALongShotComesToRestBeforeTheirGoalLine) {
+  // 8 m from their goal centre (beyond kShotRange): the shot is a long ball.
+  Scene far({-3.5, 0});
+  wm::RobotState robot = robot_at({-3.5 - kDribbler - 0.005, 0}, 0.0, 0);
+  MotionIntent intent = shoot(far.situation(), robot, {});
+  ASSERT_EQ(intent.kick, KickType::kFlat);
+  EXPECT_NEAR(intent.kick_speed, kick_speed_to_rest_after(8.0 - 1.0), 0.05);
+  // 3 m out: a shot at the configured speed.
+  Scene near({1.5, 0});
+  robot = robot_at({1.5 - kDribbler - 0.005, 0}, 0.0, 0);
+  intent = shoot(near.situation(), robot, {});
+  ASSERT_EQ(intent.kick, KickType::kFlat);
+  EXPECT_NEAR(intent.kick_speed, std::min(near.config.kick_speed, rules::kMaxBallSpeed - 0.3), 1e-9);
+}
+
 TEST(Skills, StopHalts) {
   Scene scene({0, 0});
   EXPECT_TRUE(stop(scene.situation(), robot_at({1, 1}), {}).halt);

@@ -263,7 +263,7 @@ MotionIntent redirect_at(const Situation& s, const TeamPlayMemory& m, const wm::
 double shot_quality(const Situation& s, const Vec2& from, std::optional<std::uint32_t> shooter) {
   const double distance = (s.field.their_goal_center() - from).norm();
   const double open = std::min(1.0, goal_opening(s, from, shooter).width / 0.25);
-  return open * std::clamp((7.0 - distance) / 5.0, 0.0, 1.0);
+  return open * std::clamp((kShotRange - distance) / 5.0, 0.0, 1.0);
 }
 
 std::optional<PassOption> rate_pass(const Situation& s, std::uint32_t receiver, const Vec2& point,
@@ -733,8 +733,14 @@ void attack(const Situation& s, TeamPlayMemory& m, std::uint32_t attacker, TeamI
   // A shot that would give the ball away (below hold_below) is not taken while a teammate is there to pass
   // to: the attacker keeps the ball. Building up it keeps it at once (turning towards the pass, no going
   // round the ball); otherwise only when no pass rates better now.
-  const bool keep = at_ball && quality < params.hold_below && s.possession != wm::Possession::kEnemy &&
-                    !ball_near_their_area(s) && teammate_in_passing_range(s, attacker, params);
+  bool keep = at_ball && quality < params.hold_below && s.possession != wm::Possession::kEnemy &&
+              !ball_near_their_area(s) && teammate_in_passing_range(s, attacker, params);
+  if (keep) {
+    if (!m.keeping || m.keeping->first != attacker) m.keeping = std::pair(attacker, s.now);
+    keep = s.now - m.keeping->second <= params.max_hold;
+  } else {
+    m.keeping.reset();
+  }
   const bool building_up = m.style == Style::kBuildUpAttack || m.style == Style::kHoldPossession;
   if (keep && building_up) {
     hold_ball(s, m, *robot, out);

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "services/planner/core/assignment.h"
@@ -69,6 +70,10 @@ struct TeamPlayParams {
   double contested_distance = 0.4;   // m, opponent centre to ball: the ball is challenged, not shot
   double hold_below = 0.45;          // attacking, a shot worse than this is not taken: the ball is kept
   double hold_pass_turn = 0.3;       // rad: a held ball is passed once the holder faces the pass this well
+  // s the attacker keeps the ball at most (hold_below); then it is played on as when nothing is kept. Held
+  // under a challenge the ball does not move, and past the rules' no-progress time (5 s in division A, 10 s
+  // in B) the referee restarts it there, again and again (3 times in a row in match_test's second half).
+  double max_hold = 4.0;
   // The free kick's set play (RestartPlay).
   double redirect_arrival_speed = 2.5;  // m/s the pass arrives at the redirecting teammate with
   double redirect_max_angle = 0.8;      // rad between the pass coming back and the shot going on
@@ -98,6 +103,8 @@ struct TeamPlayMemory {
   std::array<Vec2, wm::kMaxRobotsPerTeam> formation{};                // each robot's role position
   std::array<std::optional<std::uint32_t>, wm::kMaxRobotsPerTeam> marked{};  // the opponent it marks
   std::optional<double> last_tick;  // s (Situation::now) of the last strategy tick
+  // The attacker keeping the ball (its id) and since when (s, Situation::now); reset when it plays it on.
+  std::optional<std::pair<std::uint32_t, double>> keeping;
 };
 
 /// How good a shot at their goal is from `from` (0..1): the widest open part of the mouth (1 at 0.25 rad or

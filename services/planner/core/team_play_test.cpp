@@ -217,6 +217,12 @@ TEST(TeamPlay, AnAttackerInTheirThirdKeepsTheBallRatherThanTakeAPoorShot) {
   EXPECT_EQ(memory.style, Style::kHighPressureAttack);
   EXPECT_EQ(out.robots[1].tactic, "hold");
   EXPECT_EQ(out.robots[1].kick, KickType::kNone);
+  // Kept up to max_hold; held longer, it does not move and the referee restarts it (no progress): the shot.
+  scene.s.now += TeamPlayParams{}.max_hold;
+  EXPECT_EQ(attacker_plays(scene, memory).robots[1].tactic, "hold");
+  scene.s.now += 0.1;
+  EXPECT_EQ(attacker_plays(scene, memory).robots[1].tactic, "attack");
+  scene.s.now = 0;
   // With no teammate in passing range, holding the ball leads nowhere: the shot.
   scene.robots = {robot_at({2.5 - 0.12, 0.3}, 0, 1)};
   TeamPlayMemory alone;

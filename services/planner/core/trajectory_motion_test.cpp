@@ -128,6 +128,52 @@ TEST(TrajectoryMotion, TheContactGuardCountsOnAnOpponentRunningAwayButNotOnATeam
   EXPECT_LT(behind_teammate, 0.5);
 }
 
+TEST(TrajectoryMotion, AFollowerWithARobotBetweenItAndItsMovingTargetGoesRoundIt) {
+  // A marker whose moving target lies beyond a teammate standing on the way (two markers whose opponents
+  // swapped places): not the follow mode's straight line into the teammate, the searched path round it.
+  TrajectoryMotionPlanner motion(MotionLimits{});
+  const wm::RobotState robot = robot_at({0, 0});
+  Zones zones;
+  zones.robots = {{.id = 1, .ours = true, .position = robot.position},
+                  {.id = 2, .ours = true, .position = {0.4, 0.02}}};
+  MotionIntent intent = go_to({0.8, 0});
+  intent.target_velocity = Vec2(0.5, 0);
+  motion.begin_tick();
+  const Vec2 velocity = to_team(motion.plan(robot, intent, zones, 0.01), robot.orientation);
+  // From rest the path's first tick is slow (a tick of acceleration); its direction tells: sideways.
+  EXPECT_GT(std::abs(velocity.y()), std::abs(velocity.x()))
+      << "round the teammate, not straight at it: " << velocity.transpose();
+  // With the way clear the follow mode moves with the target, straight at it.
+  zones.robots.pop_back();
+  motion.begin_tick();
+  const Vec2 clear = to_team(motion.plan(robot, intent, zones, 0.01), robot.orientation);
+  EXPECT_NEAR(clear.y(), 0.0, 1e-9);
+  EXPECT_GT(clear.x(), 0.5);
+}
+
+TEST(TrajectoryMotion, WithAMeasuredDelayTheVelocityIsWrittenInTheFrameTheRobotWillBeTurnedTo) {
+  // Turning at 2 rad/s with commands acting 0.1 s late, the robot faces 0.2 rad further round when this
+  // command acts: its local velocity is written for that heading, so that it drives where it was planned.
+  const auto command_for = [](bool measured) {
+    TrajectoryMotionPlanner motion(MotionLimits{});
+    motion.set_actuation_latency(0.1, measured);
+    const wm::RobotState robot = robot_at({0, 0});
+    Zones zones;
+    zones.robots = {{.id = 1, .ours = true, .position = robot.position}};
+    MotionIntent intent = go_to({2, 0});
+    intent.orientation = 1.0;
+    motion.begin_tick();
+    motion.sent(1, Vec2(1.0, 0), 2.0);
+    return motion.plan(robot, intent, zones, 0.01);
+  };
+  const RobotCommand measured = command_for(true);
+  const Vec2 then = to_team(measured, 0.2);
+  EXPECT_NEAR(then.y(), 0.0, 1e-9) << "along x in the frame of the heading then";
+  EXPECT_GT(then.x(), 0.5);
+  const RobotCommand configured = command_for(false);
+  EXPECT_NEAR(to_team(configured, 0.0).y(), 0.0, 1e-9) << "a configured latency: the heading now";
+}
+
 TEST(TrajectoryMotion, ARobotInsideAZoneWhoseExitARobotStandsByDrivesStraightOut) {
   // Their defense area's STOP zone (division A: the area's front at x = 4.2, the zone 0.39 m before it). Our
   // robot 0.09 m inside it, an opponent beside the exit point: the searched paths all count as colliding and
