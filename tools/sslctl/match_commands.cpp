@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "libs/league/decode.h"
+#include "libs/league/field_geometry.h"
 #include "libs/league/log_file.h"
 #include "libs/net/multicast.h"
 #include "libs/time/clock.h"
@@ -40,11 +41,7 @@ bool add_vision(MatchReportBuilder& builder, std::span<const std::uint8_t> bytes
   if (packet->has_geometry()) {
     const SSL_GeometryFieldSize& size = packet->geometry().field();
     if (size.field_length() > 0 && size.field_width() > 0 && size.goal_width() > 0) {
-      FieldGeometry field;
-      field.field_length = size.field_length() / 1000.0;
-      field.field_width = size.field_width() / 1000.0;
-      field.goal_width = size.goal_width() / 1000.0;
-      builder.set_field(field);
+      builder.set_field(league::field_from_proto(size));
     }
   }
   if (!packet->has_detection()) return true;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "libs/league/field_geometry.h"
 #include "proto/ssl_simulation_custom_erforce_realism.pb.h"
 
 namespace ssl::sim {
@@ -77,29 +78,6 @@ RealismConfig realism_from_erforce(const RealismConfigErForce& erforce, std::vec
 
 }  // namespace
 
-FieldGeometry field_from_proto(const SSL_GeometryFieldSize& field) {
-  auto metres = [](double millimetres) { return millimetres / kMillimetresPerMetre; };
-  FieldGeometry geometry = field.field_length() <= 10000 ? FieldGeometry::division_b() : FieldGeometry::division_a();
-  geometry.field_length = metres(field.field_length());
-  geometry.field_width = metres(field.field_width());
-  geometry.goal_width = metres(field.goal_width());
-  geometry.goal_depth = metres(field.goal_depth());
-  geometry.boundary_width = metres(field.boundary_width());
-  if (field.has_boundary_width_goal_line()) geometry.boundary_width_goal_line = metres(field.boundary_width_goal_line());
-  if (field.has_penalty_area_depth()) geometry.penalty_area_depth = metres(field.penalty_area_depth());
-  if (field.has_penalty_area_width()) geometry.penalty_area_width = metres(field.penalty_area_width());
-  if (field.has_center_circle_radius()) geometry.center_circle_radius = metres(field.center_circle_radius());
-  if (field.has_line_thickness()) geometry.line_thickness = metres(field.line_thickness());
-  if (field.has_goal_center_to_penalty_mark()) {
-    geometry.goal_center_to_penalty_mark = metres(field.goal_center_to_penalty_mark());
-  }
-  if (field.has_goal_height()) geometry.goal_height = metres(field.goal_height());
-  if (field.has_goal_substitution_area_width()) {
-    geometry.goal_substitution_area_width = metres(field.goal_substitution_area_width());
-  }
-  return geometry;
-}
-
 ControlRequest control_from_proto(const SimulatorCommand& command, std::vector<SimError>& errors) {
   ControlRequest request;
   if (command.has_control()) {
@@ -137,7 +115,7 @@ ControlRequest control_from_proto(const SimulatorCommand& command, std::vector<S
   }
   if (command.has_config()) {
     const SimulatorConfig& config = command.config();
-    if (config.has_geometry()) request.field = field_from_proto(config.geometry().field());
+    if (config.has_geometry()) request.field = league::field_from_proto(config.geometry().field());
     for (const RobotSpecs& specs : config.robot_specs()) {
       const auto key = key_from_proto(specs.id(), errors);
       if (key) request.robot_specs.emplace_back(*key, spec_from_proto(specs, RobotSpec{}));

@@ -47,7 +47,4 @@ SSL_DetectionFrame detection_to_proto(const DetectionFrame& frame, time::Duratio
 /// Field geometry, calibrations and ball models as SSL-Vision sends them (millimetres).
 SSL_GeometryData geometry_to_proto(const GeometryData& geometry);
 
-/// SSL_GeometryData (millimetres) -> field geometry (metres); used when a client changes the field.
-FieldGeometry field_from_proto(const SSL_GeometryFieldSize& field);
-
 }  // namespace ssl::sim

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "libs/league/field_geometry.h"
 #include "proto/ssl_simulation_custom_erforce_realism.pb.h"
 
 namespace ssl::sim {
@@ -204,7 +205,7 @@ TEST(SimConvertTest, GeometryRoundTripsThroughTheWireInMillimetres) {
   EXPECT_FLOAT_EQ(wire.field().field_lines(0).p1().y(), 3000.0f);
   EXPECT_EQ(wire.field().field_lines(0).type(), TopTouchLine);
 
-  const FieldGeometry back = field_from_proto(wire.field());
+  const FieldGeometry back = league::field_from_proto(wire.field());
   EXPECT_DOUBLE_EQ(back.field_length, 9.0);
   EXPECT_DOUBLE_EQ(back.field_width, 6.0);
   EXPECT_DOUBLE_EQ(back.goal_width, 1.0);
