@@ -1,4 +1,4 @@
-// Play quality over many matches (./ssl bench): N seeded whole 6 v 6 matches per pairing of strategies, each
+// Play quality over many matches (./ssl bench): N seeded whole 6 v 6 (or 11 v 11) matches per pairing of strategies, each
 // in lockstep in one process (planner::testing::PlannedMatch: the Bullet simulator with realistic vision,
 // both teams' world models and planners, the built-in referee), spread over the cores (one child process per
 // match). The referee runs the `strict_ai` profile's rules (every foul refereed, cards, defense areas, no
@@ -12,14 +12,15 @@
 // next touch a teammate's, or a goal) and the goals scored from them (no opponent touch between) (sslctl's
 // PlayAccount on the ground truth, the kicker's intent from its planner's skill), and every game event by
 // type, fouls marked, "avoidable" ones (keep-out, too fast in STOP, defense area, double touch, crash)
-// counted apart.
+// counted apart; per pairing, camera frames with two robots closer than two radii and a centimetre (contact
+// frames, on the ground truth) and the closest two robots of the series.
 // Over 20 seeds or more of base against ball_chaser it also prints the figures of the design's play-quality
 // budgets as BUDGET lines (goal margin, passes completed, avoidable fouls; ./ssl bench's table).
 //
 // The conditions (--conditions, PlannedMatch's Conditions) default to realistic: the budgets hold there.
 //
 //   build/bench/match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...] [--tactics]
-//                            [--conditions ideal|realistic|harsh]
+//                            [--conditions ideal|realistic|harsh] [--robots 6|11]
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -145,7 +146,7 @@ class KickIntents {
 };
 
 /// One match, in this (child) process: its report as JSON, plus which colour strategy A played.
-std::string play(const Pairing& pairing, std::uint64_t seed, double half, Conditions conditions) {
+std::string play(const Pairing& pairing, std::uint64_t seed, double half, Conditions conditions, std::uint32_t robots_a_side) {
   auto profile = ssl::planner::testing::unattended_strict_ai(half);
   if (!profile) {
     std::fprintf(stderr, "match_series: %s\n", profile.error().message.c_str());
@@ -154,10 +155,11 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half, Condit
   const bool a_is_blue = seed % 2 == 0;
   const Side a = *side_named(pairing.a);
   const Side b = *side_named(pairing.b);
-  const ssl::sim::FieldGeometry field = ssl::sim::FieldGeometry::division_b();
+  const ssl::sim::FieldGeometry field =
+      robots_a_side > 6 ? ssl::sim::FieldGeometry::division_a() : ssl::sim::FieldGeometry::division_b();
   PlannedMatch match({.conditions = conditions,
                       .field = field,
-                      .robots = 6,
+                      .robots = robots_a_side,
                       .seed = seed,
                       .referee = *profile,
                       .blue_strategy = a_is_blue ? a.strategy : b.strategy,
@@ -205,14 +207,14 @@ std::string play(const Pairing& pairing, std::uint64_t seed, double half, Condit
 
 /// Runs `play` in a child process; its JSON line, or nullopt when it failed.
 std::optional<std::string> play_in_child(const Pairing& pairing, std::uint64_t seed, double half,
-                                         Conditions conditions) {
+                                         Conditions conditions, std::uint32_t robots_a_side) {
   int fds[2];
   if (pipe(fds) != 0) return std::nullopt;
   const pid_t pid = fork();
   if (pid < 0) return std::nullopt;
   if (pid == 0) {
     close(fds[0]);
-    const std::string line = play(pairing, seed, half, conditions) + "\n";
+    const std::string line = play(pairing, seed, half, conditions, robots_a_side) + "\n";
     std::size_t written = 0;
     while (written < line.size()) {
       const ssize_t n = write(fds[1], line.data() + written, line.size() - written);
@@ -307,7 +309,9 @@ std::string avoidable_fouls(const nlohmann::json& match) {
 
 double ratio(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0; }
 
-void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& matches, bool print_tactics) {
+/// `budgets`: the series is the budgets' (6 v 6): print their BUDGET lines.
+void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& matches, bool print_tactics,
+                   bool budgets) {
   Totals a, b;
   for (const nlohmann::json& match : matches) {
     const bool a_blue = match["a_is_blue"].get<bool>();
@@ -355,6 +359,17 @@ void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& ma
     const char* mark = parsed && ssl::referee::is_avoidable_foul(*parsed) ? "!!" : parsed && ssl::referee::is_foul(*parsed) ? "* " : "  ";
     std::printf("  %s %-29s %14.2f %14.2f\n", mark, type.c_str(), a.events[type] / n, b.events[type] / n);
   }
+  double contact_frames = 0;
+  std::optional<double> closest;
+  for (const nlohmann::json& match : matches) {
+    contact_frames += match["contact_frames"].get<double>();
+    if (!match["closest_robots"].is_null()) {
+      const double distance = match["closest_robots"]["distance_m"].get<double>();
+      closest = std::min(closest.value_or(distance), distance);
+    }
+  }
+  std::printf("  contact frames (both teams, centres under %.2f m) %.2f per match, %.0f in all; closest robots %.3f m\n",
+              ssl::sslctl::MatchReportBuilder::kContactDistance, contact_frames / n, contact_frames, closest.value_or(0.0));
   if (print_tactics) {
     std::printf("  roles/tactics in normal play (share of robot-frames)\n");
     std::set<std::string> names;
@@ -365,9 +380,9 @@ void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& ma
       std::printf("     %-29s %13.1f%% %13.1f%%\n", name.c_str(), ratio(a.tactics[name], all_a), ratio(b.tactics[name], all_b));
     }
   }
-  // The design's play-quality budgets are over 20 seeds of base against ball_chaser (bench/budget_table.cpp
-  // holds the limits).
-  if (pairing.a == "base" && pairing.b == "ball_chaser" && matches.size() >= 20) {
+  // The design's play-quality budgets are over 20 seeds of base against ball_chaser, 6 v 6
+  // (bench/budget_table.cpp holds the limits).
+  if (budgets && pairing.a == "base" && pairing.b == "ball_chaser" && matches.size() >= 20) {
     std::printf("BUDGET match_series_margin_goals %.2f\n", (a.goals_for - a.goals_against) / n);
     std::printf("BUDGET match_series_passes_completed_pct %.1f\n", ratio(a.passes_completed, a.passes_tried));
     std::printf("BUDGET match_series_avoidable_fouls %.0f\n", a.avoidable_fouls);
@@ -389,6 +404,7 @@ int main(int argc, char** argv) {
   std::vector<Pairing> pairings;
   bool print_tactics = false;
   Conditions conditions = Conditions::kRealistic;
+  std::uint32_t robots_a_side = 6;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const auto value = [&]() -> std::string {
@@ -407,14 +423,15 @@ int main(int argc, char** argv) {
     if (arg == "--help") {
       std::printf(
           "usage: match_series [--seeds N] [--first-seed S] [--half S] [--jobs J] [--pairing A:B ...] [--tactics]\n"
-          "                    [--conditions ideal|realistic|harsh]\n"
-          "  plays N seeded whole 6 v 6 matches (default 20; seeds S, S+1, ...) per pairing of strategies (base,\n"
-          "  base+redirect: base with the free-kick set play, base+kickoff_shot: kickoffs shot straight,\n"
-          "  base+penalty_shot: penalties shot from the mark, or several: base+redirect+kickoff_shot; ball_chaser,\n"
-          "  wander; default base:ball_chaser and base:base) in lockstep under the strict_ai rules,\n"
-          "  halves of --half s of playing time (default 300), J matches at a time (default: the cores), and\n"
-          "  prints goals, passes, shots, possession and game events per strategy and match, and the budgets'\n"
-          "  figures; --tactics: also the share of each role/tactic in normal play; --conditions: what the\n"
+          "                    [--conditions ideal|realistic|harsh] [--robots 6|11]\n"
+          "  plays N seeded whole 6 v 6 matches (division B; --robots 11: 11 v 11 in division A) (default 20;\n"
+          "  seeds S, S+1, ...) per pairing of strategies (base, base+redirect: base with the free-kick set\n"
+          "  play, base+kickoff_shot: kickoffs shot straight, base+penalty_shot: penalties shot from the mark,\n"
+          "  or several: base+redirect+kickoff_shot; ball_chaser, wander; default base:ball_chaser and\n"
+          "  base:base) in lockstep under the strict_ai rules, halves of --half s of playing time (default 300),\n"
+          "  J matches at a time (default: the cores), and prints goals, passes, shots, possession and game\n"
+          "  events per strategy and match, contact frames and the closest robots, and the budgets' figures\n"
+          "  (6 v 6); --tactics: also the share of each role/tactic in normal play; --conditions: what the\n"
           "  robots and the referee are like (PlannedMatch's Conditions; default realistic: about 40 ms from camera\n"
           "  to wheels, lagging velocity, robots that differ, the referee sees vision)\n");
       return 0;
@@ -431,6 +448,10 @@ int main(int argc, char** argv) {
       const std::optional<Conditions> named = ssl::planner::testing::conditions_named(value());
       if (!named) usage_error("--conditions takes ideal, realistic or harsh");
       conditions = *named;
+    } else if (arg == "--robots") {
+      const std::string text = value();
+      if (text != "6" && text != "11") usage_error("--robots takes 6 or 11");
+      robots_a_side = static_cast<std::uint32_t>(std::stoul(text));
     } else if (arg == "--jobs") {
       jobs = static_cast<unsigned>(number(1, 256));
     } else if (arg == "--pairing") {
@@ -450,9 +471,10 @@ int main(int argc, char** argv) {
   for (std::size_t p = 0; p < pairings.size(); ++p) {
     for (std::uint64_t s = 0; s < seeds; ++s) queue.push_back({p, first_seed + s});
   }
-  std::printf("match series: %zu pairings x %llu seeds of 6 v 6 (division B), halves of %.0f s, strict_ai rules "
+  std::printf("match series: %zu pairings x %llu seeds of %u v %u (division %s), halves of %.0f s, strict_ai rules "
               "(auto continue, no early end or extra time), conditions %s, %u at a time\n",
-              pairings.size(), static_cast<unsigned long long>(seeds), half,
+              pairings.size(), static_cast<unsigned long long>(seeds), robots_a_side, robots_a_side,
+              robots_a_side > 6 ? "A" : "B", half,
               ssl::planner::testing::to_string(conditions), jobs);
   std::fflush(stdout);
   std::vector<std::vector<nlohmann::json>> results(pairings.size());
@@ -465,7 +487,7 @@ int main(int argc, char** argv) {
     workers.emplace_back([&] {
       for (std::size_t j = next++; j < queue.size(); j = next++) {
         const Job& job = queue[j];
-        const std::optional<std::string> line = play_in_child(pairings[job.pairing], job.seed, half, conditions);
+        const std::optional<std::string> line = play_in_child(pairings[job.pairing], job.seed, half, conditions, robots_a_side);
         std::lock_guard lock(results_mutex);
         if (!line) {
           ++failed;
@@ -476,10 +498,12 @@ int main(int argc, char** argv) {
         }
         nlohmann::json match = nlohmann::json::parse(*line);
         const bool a_blue = match["a_is_blue"].get<bool>();
-        std::printf("  seed %3llu %s vs %s: %s %u : %u%s%s\n", static_cast<unsigned long long>(job.seed),
+        const unsigned contact_frames = match["contact_frames"].get<unsigned>();
+        std::printf("  seed %3llu %s vs %s: %s %u : %u%s%s%s\n", static_cast<unsigned long long>(job.seed),
                     pairings[job.pairing].a.c_str(), pairings[job.pairing].b.c_str(), a_blue ? "(a blue)" : "(a yellow)",
                     match["teams"][a_blue ? "blue" : "yellow"]["score"].get<unsigned>(),
                     match["teams"][a_blue ? "yellow" : "blue"]["score"].get<unsigned>(),
+                    contact_frames > 0 ? (", " + std::to_string(contact_frames) + " contact frames").c_str() : "",
                     match["finished"].get<bool>() ? "" : " (no final whistle)", avoidable_fouls(match).c_str());
         std::fflush(stdout);
         results[job.pairing].push_back(std::move(match));
@@ -488,7 +512,7 @@ int main(int argc, char** argv) {
   }
   for (std::thread& worker : workers) worker.join();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  for (std::size_t p = 0; p < pairings.size(); ++p) print_pairing(pairings[p], results[p], print_tactics);
+  for (std::size_t p = 0; p < pairings.size(); ++p) print_pairing(pairings[p], results[p], print_tactics, robots_a_side == 6);
   std::printf("\n%zu matches in %.0f s of wall time\n", queue.size(), wall);
   return failed == 0 ? 0 : 1;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include "libs/geometry/closest_point.h"
 #include "libs/geometry/contains.h"
@@ -13,6 +14,8 @@ namespace ssl::planner {
 namespace {
 
 constexpr double kStraightAway = 0.7;   // cos of the angle off straight away a robot counted on to go on runs at
+// m from the ball within which a robot contests it: the contact guard looks ahead to no robot there.
+constexpr double kBallContest = 1.0;
 
 constexpr double kArrived = 0.005;              // m: closer to the target than this, at rest, is there
 constexpr int kFreeTargetPasses = 3;            // moves of the target out of robots standing on it
@@ -156,31 +159,44 @@ Vec2 TrajectoryMotionPlanner::free_target(const wm::RobotState& robot, Vec2 targ
   return target;
 }
 
-Vec2 TrajectoryMotionPlanner::guarded(const wm::RobotState& robot, Vec2 velocity, const Zones& zones) const {
+Vec2 TrajectoryMotionPlanner::guarded(const wm::RobotState& robot, Vec2 velocity, const Zones& zones,
+                                      bool at_ball) const {
   const double touching = 2 * params_.robot_radius + params_.guard_margin;
   const double a = params_.guard_deceleration;
   const double tau = guard_latency();
   for (const ZoneRobot& other : zones.robots) {
     if (other.ours && other.id == robot.id) continue;
-    const Vec2 offset = other.position - robot.position;
-    const double distance = offset.norm();
-    if (distance < 1e-9) continue;
-    const Vec2 toward = offset / distance;
-    const double approach = velocity.dot(toward);
-    if (approach <= 0) continue;
-    // Largest v with v * tau + v^2 / (2 a) <= our share: half the gap (the other robot may come towards us
-    // doing the same), plus the way a robot moving away at w still goes when it brakes as hard as a robot
-    // can (w^2 / (2 b)).
-    // Only an opponent running (nearly) straight away is counted on to go on: one crossing our way can turn
-    // towards us instead of braking, and a teammate ahead is no one to follow closely (one of ours at
-    // 2 m/s marking an opponent ran into a teammate ahead going 1.2 m/s the same way).
-    const double other_speed = other.velocity.norm();
-    const double along = other.velocity.dot(toward);
-    const double away = !other.ours && along > other_speed * kStraightAway ? along : 0.0;
-    const double share =
-        std::max(0.0, distance - touching) / 2 + away * away / (2 * params_.guard_other_braking);
-    const double allowed = stopping_speed(share, a, tau);
-    if (approach > allowed) velocity -= (approach - allowed) * toward;
+    // Where the other robot is now and, away from the ball, also where it will be when this command acts:
+    // one crossing our way turns the direction towards it faster than a robot brakes, and one coming at us
+    // may still be answering a command of before its guard braked it. At the ball (this robot dribbling or
+    // armed, or the other within kBallContest of it) the contest is the game: a robot there yields only to
+    // where the other is, or it gives the ball and the lanes up. bench/match_series --robots 11 (base
+    // against base, 20 seeds of two 120 s halves, realistic): 8946 contact frames without the lookahead,
+    // 208 with it. Looking ahead at the ball too, base lost to ball_chaser (1.50 : 2.00 over 12 seeds of
+    // 6 v 6, realistic, against 1.92 : 1.00 without any lookahead and 2.08 : 1.33 with this one).
+    const bool contest = at_ball || (zones.ball && (other.position - *zones.ball).norm() < kBallContest);
+    const std::array<Vec2, 2> other_positions{other.position, Vec2(other.position + other.velocity * tau)};
+    for (const Vec2& other_position : std::span(other_positions).first(contest ? 1 : 2)) {
+      const Vec2 offset = other_position - robot.position;
+      const double distance = offset.norm();
+      if (distance < 1e-9) continue;
+      const Vec2 toward = offset / distance;
+      const double approach = velocity.dot(toward);
+      if (approach <= 0) continue;
+      // Largest v with v * tau + v^2 / (2 a) <= our share: half the gap (the other robot may come towards
+      // us doing the same), plus the way a robot moving away at w still goes when it brakes as hard as a
+      // robot can (w^2 / (2 b)).
+      // Only an opponent running (nearly) straight away is counted on to go on: one crossing our way can
+      // turn towards us instead of braking, and a teammate ahead is no one to follow closely (one of ours at
+      // 2 m/s marking an opponent ran into a teammate ahead going 1.2 m/s the same way).
+      const double other_speed = other.velocity.norm();
+      const double along = other.velocity.dot(toward);
+      const double away = !other.ours && along > other_speed * kStraightAway ? along : 0.0;
+      const double share =
+          std::max(0.0, distance - touching) / 2 + away * away / (2 * params_.guard_other_braking);
+      const double allowed = stopping_speed(share, a, tau);
+      if (approach > allowed) velocity -= (approach - allowed) * toward;
+    }
   }
   return velocity;
 }
@@ -307,7 +323,8 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
     if (velocity.norm() > limits.max_speed) velocity *= limits.max_speed / velocity.norm();
   }
   if ((target - robot.position).norm() < kArrived && velocity.norm() < 0.05) velocity = Vec2::Zero();
-  velocity = guarded(robot, zone_guarded(robot, velocity, intent, zones), zones);
+  velocity = guarded(robot, zone_guarded(robot, velocity, intent, zones), zones,
+                     intent.dribble || intent.kick != KickType::kNone);
 
   // With a measured delay the heading is planned from where the last command turns it by the time this
   // one acts: robots that answer late overshoot their heading otherwise (match_series --conditions realistic,

@@ -103,8 +103,10 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
     return std::max(params_.guard_latency,
                     params_.actuation_latency + (latency_measured_ ? params_.measured_latency_allowance : 0.0));
   }
-  /// `velocity` (team frame, m/s) of `robot` limited by the contact guard against every other robot.
-  Vec2 guarded(const wm::RobotState& robot, Vec2 velocity, const Zones& zones) const;
+  /// `velocity` (team frame, m/s) of `robot` limited by the contact guard against every other robot: where
+  /// each is now and, unless `at_ball` (the robot dribbling or armed to kick), where it will be when the
+  /// command acts.
+  Vec2 guarded(const wm::RobotState& robot, Vec2 velocity, const Zones& zones, bool at_ball) const;
   /// `velocity` limited so that `robot` can still stop before each defense zone the intent keeps it out of
   /// (and the ball's circle, with guard_ball_circle) after guard_latency at guard_deceleration, and never
   /// goes deeper into one it is inside: the zones are a hard limit whatever the plan (a robot following a

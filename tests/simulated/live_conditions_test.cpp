@@ -1,4 +1,5 @@
-// Balls out under live conditions: the base strategy against itself, 6 v 6 in division B, in lockstep under the
+// Live conditions in lockstep, balls out and contacts: the base strategy against itself, 6 v 6 in division B,
+// in lockstep under the
 // `realistic` conditions profile (robots answering 25 ms late with a lagging velocity and ±10 % limits, the
 // referee observing the vision the teams see), refereed by the built-in referee with the strict_ai rules running
 // the match unattended (planner::testing::unattended_strict_ai). Each of six seeds is played twice, blue on the
@@ -8,12 +9,20 @@
 // not: yellow 18 and blue 17 times in the first six of these halves, 1.3 per 40 s).
 // The counts per colour and per side are printed: per half they run from 0 to 6 with the same code, so a
 // comparison needs more halves than CI can play (see bench/live_match for the live series).
+// Contacts: in those twelve halves, and in four 11 v 11 halves of division A (seeds 1 and 2, each side, 45 s of
+// playing time), no camera frame has two robot centres closer than two radii and a centimetre (the match report's
+// kContactDistance; the ground truth). Before the contact guard looked ahead to where robots away from the
+// ball will be when a command acts, the 11 v 11 halves had hundreds (bench/match_series --robots 11 prints
+// the figure over more seeds).
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <map>
+#include <optional>
+#include <tuple>
+#include <vector>
 
 #include "services/planner/testing/planned_match.h"
 #include "tools/sslctl/match_report.h"
@@ -26,47 +35,65 @@ using referee::Stage;
 constexpr double kHalfDuration = 90;  // s of playing time
 constexpr double kTimeLimit = 300;    // s of simulated time for the half with its stoppages
 constexpr std::uint64_t kSeeds[] = {1, 2, 3, 4, 5, 6};
+constexpr double kFullTeamHalfDuration = 45;  // s of playing time, 11 v 11
+constexpr std::uint64_t kFullTeamSeeds[] = {1, 2};
+
+/// 6 v 6 in division B or 11 v 11 in division A.
+enum class TeamSize { kSix, kEleven };
 
 struct HalfRecord {
   bool half_ended = false;
   bool blue_positive = false;
   double in_play = 0;  // s, by the referee
+  std::uint64_t contact_frames = 0;
+  std::optional<sslctl::MatchReport::ClosestRobots> closest_robots;
   sslctl::MatchReport::TeamLine yellow;
   sslctl::MatchReport::TeamLine blue;
 };
 
-const HalfRecord& played_half(std::uint64_t seed, bool blue_positive) {
-  static std::map<std::pair<std::uint64_t, bool>, HalfRecord> records;
-  if (const auto found = records.find({seed, blue_positive}); found != records.end()) return found->second;
-  auto profile = planner::testing::unattended_strict_ai(kHalfDuration);
+const HalfRecord& played_half(std::uint64_t seed, bool blue_positive, TeamSize size = TeamSize::kSix) {
+  static std::map<std::tuple<std::uint64_t, bool, TeamSize>, HalfRecord> records;
+  if (const auto found = records.find({seed, blue_positive, size}); found != records.end()) return found->second;
+  const bool eleven = size == TeamSize::kEleven;
+  auto profile = planner::testing::unattended_strict_ai(eleven ? kFullTeamHalfDuration : kHalfDuration);
   EXPECT_TRUE(profile) << profile.error().message;
-  const sim::FieldGeometry field = sim::FieldGeometry::division_b();
+  const sim::FieldGeometry field = eleven ? sim::FieldGeometry::division_a() : sim::FieldGeometry::division_b();
   planner::testing::PlannedMatch match({.conditions = planner::testing::Conditions::kRealistic,
                                         .field = field,
-                                        .robots = 6,
+                                        .robots = eleven ? 11u : 6u,
                                         .seed = seed,
                                         .blue_on_positive_half = blue_positive,
                                         .referee = *profile});
   sslctl::MatchReportBuilder report;
   report.set_field(field);
+  std::vector<sslctl::PlayAccount::Robot> robots;
   match.start_match();
   const auto stage = [&] { return match.builtin_referee()->state().stage; };
   while (stage() != Stage::kNormalHalfTime && stage() != Stage::kPostGame && match.elapsed() < kTimeLimit) {
     match.run(std::chrono::seconds(1), [&](const sim::DetectionFrame&, const sim::WorldSnapshot& truth) {
       report.on_referee(match.builtin_referee()->state(), truth.time);
-      report.on_ball(truth.ball.position.head<2>(), truth.time);
+      robots.clear();
+      for (const sim::RobotState& robot : truth.robots) {
+        robots.push_back({.team = robot.key.team, .id = robot.key.id, .position = robot.position});
+      }
+      report.on_frame(truth.ball.position.head<2>(), robots, truth.time);
     });
   }
   const sslctl::MatchReport figures = report.report();
   HalfRecord out{.half_ended = stage() == Stage::kNormalHalfTime,
                  .blue_positive = blue_positive,
                  .in_play = figures.in_play,
+                 .contact_frames = figures.contact_frames,
+                 .closest_robots = figures.closest_robots,
                  .yellow = figures.yellow,
                  .blue = figures.blue};
-  std::printf("seed %llu, blue on the %s half: yellow %u goals %u out, blue %u goals %u out, %.0f s in play\n",
-              static_cast<unsigned long long>(seed), blue_positive ? "positive" : "negative", out.yellow.score,
-              out.yellow.balls_out, out.blue.score, out.blue.balls_out, out.in_play);
-  return records.emplace(std::pair(seed, blue_positive), out).first->second;
+  std::printf("%s seed %llu, blue on the %s half: yellow %u goals %u out, blue %u goals %u out, %.0f s in play, "
+              "%llu contact frames, closest robots %.3f m\n",
+              eleven ? "11 v 11" : "6 v 6", static_cast<unsigned long long>(seed), blue_positive ? "positive" : "negative",
+              out.yellow.score, out.yellow.balls_out, out.blue.score, out.blue.balls_out, out.in_play,
+              static_cast<unsigned long long>(out.contact_frames),
+              out.closest_robots ? out.closest_robots->distance : 0.0);
+  return records.emplace(std::tuple(seed, blue_positive, size), out).first->second;
 }
 
 TEST(LiveConditionsSeries, TheTeamsKickTheBallOutAtMostOncePerFortySecondsInPlayOnAverage) {
@@ -89,6 +116,22 @@ TEST(LiveConditionsSeries, TheTeamsKickTheBallOutAtMostOncePerFortySecondsInPlay
   EXPECT_LE((yellow + blue) / 2.0, in_play / 40);
   EXPECT_LE(yellow, in_play / 30);
   EXPECT_LE(blue, in_play / 30);
+}
+
+TEST(LiveConditionsSeries, NoTwoRobotsCloserThanTwoRadiiAndACentimetre) {
+  const auto check = [](std::uint64_t seed, bool blue_positive, TeamSize size) {
+    const HalfRecord& half = played_half(seed, blue_positive, size);
+    EXPECT_EQ(half.contact_frames, 0u)
+        << (size == TeamSize::kEleven ? "11 v 11" : "6 v 6") << " seed " << seed << ", blue on the "
+        << (blue_positive ? "positive" : "negative") << " half; closest "
+        << (half.closest_robots ? half.closest_robots->distance : 0.0) << " m";
+  };
+  for (const std::uint64_t seed : kSeeds) {
+    for (const bool blue_positive : {true, false}) check(seed, blue_positive, TeamSize::kSix);
+  }
+  for (const std::uint64_t seed : kFullTeamSeeds) {
+    for (const bool blue_positive : {true, false}) check(seed, blue_positive, TeamSize::kEleven);
+  }
 }
 
 }  // namespace
