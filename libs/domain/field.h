@@ -47,6 +47,10 @@ struct FieldGeometry {
 
   double half_length() const { return 0.5 * field_length; }
   double half_width() const { return 0.5 * field_width; }
+  /// m from the centre line to the walls behind the goal lines, and from the halfway line to the walls
+  /// beyond the touch lines.
+  double wall_half_length() const { return half_length() + boundary_width_goal_line; }
+  double wall_half_width() const { return half_width() + boundary_width; }
 
   friend bool operator==(const FieldGeometry&, const FieldGeometry&) = default;
 };

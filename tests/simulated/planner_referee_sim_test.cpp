@@ -1555,21 +1555,22 @@ TEST_P(PlannerSimReferee, BlockStandsInTheMouthThenOnTheLineOfSight) {
 INSTANTIATE_TEST_SUITE_P(PlannerSim, PlannerSimReferee, ::testing::ValuesIn(all_cases()),
                          [](const ::testing::TestParamInfo<Case>& p) { return p.param.name(); });
 
-// Balls beyond the field lines (between the lines and the walls, 0.3 m of boundary in division B): the
-// placer may enter the boundary, and a ball too near a wall to be approached from behind is first pulled
-// back (taken from the field side and dribbled backwards). One colour and side each: the skill does not
-// depend on them.
+// Balls beyond the field lines (between the lines and the walls, 0.3 m of boundary in division B; in
+// division A 0.6 m behind the goal lines): the placer may enter the boundary, and a ball too near a wall to be
+// approached from behind is first pulled back (taken from the field side and dribbled backwards). One colour
+// and side each: the skill does not depend on them.
 struct OutsideCase {
   const char* name;
   Vec2 ball;    // team frame
   Vec2 target;  // team frame
+  bool division_a = false;
 };
 
 class PlannerSimPlacementOutside : public ::testing::TestWithParam<OutsideCase> {};
 
 TEST_P(PlannerSimPlacementOutside, OurPlacerFetchesTheBallFromTheBoundary) {
   const OutsideCase c = GetParam();
-  LockstepMatch m({.side = {TeamColor::kBlue, false}, .division_a = false}, seed());
+  LockstepMatch m({.side = {TeamColor::kBlue, false}, .division_a = c.division_a}, seed());
   default_layout(m);
   m.place_ball(c.ball);
   run_our_placement(m, c.name, c.target, 20.0);
@@ -1581,7 +1582,10 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(OutsideCase{"TouchLineBoundary", {1.0, 3.1}, {1.0, 2.8}},        // 0.2 m from the wall
                       OutsideCase{"AgainstTheWall", {-1.5, 3.25}, {-1.5, 2.8}},       // 0.05 m from the wall
                       OutsideCase{"BesideOurGoal", {-4.65, 1.2}, {-3.5, 2.8}},         // goal kick
-                      OutsideCase{"InTheCorner", {-4.7, -3.2}, {-4.3, -2.8}}),          // both walls near
+                      OutsideCase{"InTheCorner", {-4.7, -3.2}, {-4.3, -2.8}},           // both walls near
+                      // Field A: walls 0.6 m behind the goal lines (x = +-6.6); the ball 0.45 m behind
+                      // ours, where grSim's out balls come to rest (the placer stopped 0.3 m behind the line).
+                      OutsideCase{"BehindTheGoalLineDivA", {-6.45, 1.6}, {-5.0, 2.8}, true}),
     [](const ::testing::TestParamInfo<OutsideCase>& param_info) { return std::string(param_info.param.name); });
 
 // ---- determinism ------------------------------------------------------------------------------------------

@@ -83,12 +83,13 @@ geom::Rectangle their_defense_zone(const Zones& zones) {
 }
 
 geom::Rectangle allowed_area(const MotionIntent& intent, const Zones& zones) {
-  // The walls stand boundary_width beyond the lines (behind the goal lines too: the division A's wider
-  // margin there is not used).
-  const double beyond = intent.may_enter_boundary ? zones.field.size().boundary_width - zones.wall_margin
-                                                  : zones.field_margin;
-  const double hx = zones.field.half_length() + beyond;
-  const double hy = zones.field.half_width() + beyond;
+  // The walls stand boundary_width beyond the touch lines and boundary_width_goal_line beyond the goal
+  // lines (0.6 m in division A: a ball resting there, as it does on grSim, is fetched from there too).
+  const wm::FieldSize& size = zones.field.size();
+  const double hx = intent.may_enter_boundary ? size.wall_half_length() - zones.wall_margin
+                                              : zones.field.half_length() + zones.field_margin;
+  const double hy = intent.may_enter_boundary ? size.wall_half_width() - zones.wall_margin
+                                              : zones.field.half_width() + zones.field_margin;
   return {{-hx, -hy}, {hx, hy}};
 }
 

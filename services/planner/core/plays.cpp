@@ -529,8 +529,8 @@ struct PullBackParams {
 bool approachable_from_behind(const Situation& s, const Vec2& ball, const Vec2& u, double extra) {
   const PullBackParams params;
   const Vec2 behind = ball - u * (dribbler_distance(s) + params.approach_margin + extra);
-  const double reach_x = s.field.half_length() + s.field.size().boundary_width - s.zones.wall_margin;
-  const double reach_y = s.field.half_width() + s.field.size().boundary_width - s.zones.wall_margin;
+  const double reach_x = s.field.size().wall_half_length() - s.zones.wall_margin;
+  const double reach_y = s.field.size().wall_half_width() - s.zones.wall_margin;
   return std::abs(behind.x()) <= reach_x && std::abs(behind.y()) <= reach_y;
 }
 

@@ -166,10 +166,10 @@ bool WorldModel::in_contact(TeamColor team, std::uint32_t id, const Vec2& positi
       if ((others[other]->filter().state().head<2>() - position).squaredNorm() < reach * reach) return true;
     }
   }
-  // The walls stand at the outer edge of the boundary strip.
+  // The walls stand at the outer edge of the boundary strip (wider behind the goal lines in division A).
   const FieldSize& size = field_.size();
-  const double wall_x = size.field_length / 2 + size.boundary_width;
-  const double wall_y = size.field_width / 2 + size.boundary_width;
+  const double wall_x = size.wall_half_length();
+  const double wall_y = size.wall_half_width();
   const double wall_reach = config_.robot_radius + config_.contact_margin;
   return std::abs(position.x()) > wall_x - wall_reach || std::abs(position.y()) > wall_y - wall_reach;
 }
