@@ -7,9 +7,9 @@
 // Per run it prints in play from vision (share of the run's referee time), the longest stall, the closest two
 // robots and the contact frames, and per team (yellow, blue, with the half it defends at kickoff): goals,
 // balls out, fouls (the referee's counter), placements, yellow cards and avoidable fouls
-// (referee::is_avoidable_foul, as bench/match_series counts them). Then the same team figures summed per
-// colour and per side over the runs, and, when every run completed, the BUDGET lines of the live-match
-// budgets (limits in bench/budget_table.cpp):
+// (referee::is_avoidable_foul, as bench/match_series counts them; per run with their types). Then the same
+// team figures summed per colour and per side over the runs, and, when every run completed, the BUDGET lines
+// of the live-match budgets (limits in bench/budget_table.cpp):
 //   live_in_play_pct                lowest in play from vision over the runs, % of the run
 //   live_goals_per_5min_11v11       both teams' goals per 300 s of a run's referee time, mean of the 11 v 11 runs
 //   live_colour_goal_ratio          the series' goals of the colour with fewer / of the other (0 when none)
@@ -150,6 +150,7 @@ struct TeamFigures {
   double placements = 0;
   double yellow_cards = 0;
   double avoidable_fouls = 0;
+  std::string avoidable_foul_types;  // one run's: " TYPE xN" each (not summed by add)
   double in_play = 0;  // s the referee's game ran (the run's: the same for both teams)
 
   void add(const TeamFigures& other) {
@@ -221,8 +222,11 @@ RunFigures figures_of(const nlohmann::json& report, const Run& run) {
     const auto type = ssl::referee::parse_game_event_type(event.at("type").get<std::string>());
     if (!type || !ssl::referee::is_avoidable_foul(*type)) continue;
     const std::string team = event.at("team").get<std::string>();
-    if (team == "yellow") f.yellow.avoidable_fouls += event.at("count").get<double>();
-    if (team == "blue") f.blue.avoidable_fouls += event.at("count").get<double>();
+    TeamFigures* by = team == "yellow" ? &f.yellow : team == "blue" ? &f.blue : nullptr;
+    if (!by) continue;
+    by->avoidable_fouls += event.at("count").get<double>();
+    by->avoidable_foul_types += " " + event.at("type").get<std::string>() + " x" +
+                                std::to_string(event.at("count").get<unsigned>());
   }
   return f;
 }
@@ -287,11 +291,12 @@ std::string run_title(std::size_t index, std::size_t count, const Run& run) {
 }
 
 void print_team(const char* name, bool positive, const TeamFigures& t) {
+  const std::string types = t.avoidable_foul_types.empty() ? "" : " (" + t.avoidable_foul_types.substr(1) + ")";
   std::printf(
       "  %-6s (%s half): goals %.0f, balls out %.0f, fouls %.0f, placements %.0f, yellow cards %.0f, "
-      "avoidable fouls %.0f\n",
+      "avoidable fouls %.0f%s\n",
       name, side_name(positive).c_str(), t.goals, t.balls_out, t.fouls, t.placements, t.yellow_cards,
-      t.avoidable_fouls);
+      t.avoidable_fouls, types.c_str());
 }
 
 void print_run(std::size_t index, std::size_t count, const RunFigures& f) {
@@ -377,9 +382,9 @@ Options parse(int argc, char** argv) {
           "  %d) for each team size (--robots, repeatable; default 6 and 11) with blue on the positive half, then\n"
           "  on the negative one, reads each match for M minutes of wall-clock time (default 5) with `sslctl match\n"
           "  report`, stops it with `./ssl down --domain %d` (also on an error or Ctrl-C), and prints per run and\n"
-          "  team goals, balls out, fouls, placements, yellow cards, avoidable fouls, in play from vision, the\n"
-          "  longest stall, the closest two robots and the contact frames, sums per colour and side, and the\n"
-          "  live-match BUDGET lines; --seed and --conditions (default realistic) go to ./ssl up\n",
+          "  team goals, balls out, fouls, placements, yellow cards, avoidable fouls (and their types), in play\n"
+          "  from vision, the longest stall, the closest two robots and the contact frames, sums per colour and\n"
+          "  side, and the live-match BUDGET lines; --seed and --conditions (default realistic) go to ./ssl up\n",
           kDomain, kVisionPort, kRefereePort, kHttpPort, kDomain);
       std::exit(0);
     }

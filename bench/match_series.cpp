@@ -1,10 +1,11 @@
-// Play quality over many matches (./ssl bench): N seeded whole 6 v 6 (or 11 v 11) matches per pairing of strategies, each
-// in lockstep in one process (planner::testing::PlannedMatch: the Bullet simulator with realistic vision,
-// both teams' world models and planners, the built-in referee), spread over the cores (one child process per
-// match). The referee runs the `strict_ai` profile's rules (every foul refereed, cards, defense areas, no
-// progress) with three changes so that matches run unattended and comparably: restarts continue without an
-// operator (auto_continue), the half-time break is 10 s (nothing plays in it), and no early end or extra time
-// (a match is always two full halves). As in `./ssl up`, the simulator places the ball for the referee.
+// Play quality over many matches (./ssl bench): N seeded whole 6 v 6 (or 11 v 11) matches per pairing of
+// strategies, each in lockstep in one process (planner::testing::PlannedMatch: the Bullet simulator with
+// realistic vision, both teams' world models and planners, the built-in referee), spread over the cores (one
+// child process per match). The referee runs the `strict_ai` profile's rules (every foul refereed, cards,
+// defense areas, no progress) with three changes so that matches run unattended and comparably: restarts
+// continue without an operator (auto_continue), the half-time break is 10 s (nothing plays in it), and no
+// early end or extra time (a match is always two full halves). As in `./ssl up`, the simulator places the
+// ball for the referee.
 // The strategies swap colours every other seed.
 //
 // Per pairing it prints, per strategy and per match on average: goals for / against, passes tried /
@@ -146,7 +147,8 @@ class KickIntents {
 };
 
 /// One match, in this (child) process: its report as JSON, plus which colour strategy A played.
-std::string play(const Pairing& pairing, std::uint64_t seed, double half, Conditions conditions, std::uint32_t robots_a_side) {
+std::string play(const Pairing& pairing, std::uint64_t seed, double half, Conditions conditions,
+                 std::uint32_t robots_a_side) {
   auto profile = ssl::planner::testing::unattended_strict_ai(half);
   if (!profile) {
     std::fprintf(stderr, "match_series: %s\n", profile.error().message.c_str());
@@ -368,8 +370,10 @@ void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& ma
       closest = std::min(closest.value_or(distance), distance);
     }
   }
-  std::printf("  contact frames (both teams, centres under %.2f m) %.2f per match, %.0f in all; closest robots %.3f m\n",
-              ssl::sslctl::MatchReportBuilder::kContactDistance, contact_frames / n, contact_frames, closest.value_or(0.0));
+  std::printf("  contact frames (both teams, centres under %.2f m) %.2f per match, %.0f in all; closest robots "
+              "%.3f m\n",
+              ssl::sslctl::MatchReportBuilder::kContactDistance, contact_frames / n, contact_frames,
+              closest.value_or(0.0));
   if (print_tactics) {
     std::printf("  roles/tactics in normal play (share of robot-frames)\n");
     std::set<std::string> names;
@@ -487,7 +491,8 @@ int main(int argc, char** argv) {
     workers.emplace_back([&] {
       for (std::size_t j = next++; j < queue.size(); j = next++) {
         const Job& job = queue[j];
-        const std::optional<std::string> line = play_in_child(pairings[job.pairing], job.seed, half, conditions, robots_a_side);
+        const std::optional<std::string> line =
+            play_in_child(pairings[job.pairing], job.seed, half, conditions, robots_a_side);
         std::lock_guard lock(results_mutex);
         if (!line) {
           ++failed;
@@ -512,7 +517,9 @@ int main(int argc, char** argv) {
   }
   for (std::thread& worker : workers) worker.join();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  for (std::size_t p = 0; p < pairings.size(); ++p) print_pairing(pairings[p], results[p], print_tactics, robots_a_side == 6);
+  for (std::size_t p = 0; p < pairings.size(); ++p) {
+    print_pairing(pairings[p], results[p], print_tactics, robots_a_side == 6);
+  }
   std::printf("\n%zu matches in %.0f s of wall time\n", queue.size(), wall);
   return failed == 0 ? 0 : 1;
 }
