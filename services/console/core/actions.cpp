@@ -40,8 +40,8 @@ Result<double> number_field(const json& object, const char* name) {
 
 /// The point must lie on the carpet, inside the walls.
 Result<geom::Vec2> on_carpet(double x, double y, const FieldGeometry& field) {
-  const double half_length = field.field_length / 2 + field.boundary_width_goal_line;
-  const double half_width = field.field_width / 2 + field.boundary_width;
+  const double half_length = field.wall_half_length();
+  const double half_width = field.wall_half_width();
   if (std::abs(x) > half_length || std::abs(y) > half_width) {
     char text[160];
     std::snprintf(text, sizeof text, "(%.2f, %.2f) is off the field (|x| <= %.2f, |y| <= %.2f m)", x, y, half_length,

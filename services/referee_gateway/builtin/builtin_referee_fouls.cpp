@@ -303,8 +303,8 @@ void BuiltinReferee::judge_boundary_crossing(const CleanObservation& seen, Times
   const BoundaryCrossingRule& rule = profile_.rules.boundary_crossing;
   if (!rule.enabled || !ball_left_field_ || boundary_crossing_raised_ || !seen.ball) return;
   if (now - ball_left_field_->first > duration_from_seconds(kBoundaryCrossingWindow)) return;
-  const bool beyond_walls = std::abs(seen.ball->x()) > field_.half_length() + field_.boundary_width_goal_line ||
-                            std::abs(seen.ball->y()) > field_.half_width() + field_.boundary_width;
+  const bool beyond_walls =
+      std::abs(seen.ball->x()) > field_.wall_half_length() || std::abs(seen.ball->y()) > field_.wall_half_width();
   if (!beyond_walls) return;
   boundary_crossing_raised_ = true;
   const std::optional<Touch>& kicker = ball_left_field_->second;

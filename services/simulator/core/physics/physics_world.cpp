@@ -287,8 +287,8 @@ struct PhysicsWorld::Impl {
                params.ball_restitution_ground, kGroupGround, kMaskGround);
     const double t = params.boundary_wall_thickness;
     const double h = params.boundary_wall_height;
-    const double inner_x = field.field_length / 2 + field.boundary_width_goal_line;
-    const double inner_y = field.field_width / 2 + field.boundary_width;
+    const double inner_x = field.wall_half_length();
+    const double inner_y = field.wall_half_width();
     const double e = params.ball_restitution_wall;
     for (double sign : {-1.0, 1.0}) {
       add_box(0, sign * (inner_y + t / 2), inner_x + t, t / 2, h, e);  // along a touch line

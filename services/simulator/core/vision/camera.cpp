@@ -27,8 +27,8 @@ CameraGrid camera_grid(int camera_count) {
 }
 
 geom::Rectangle covered_area(const FieldGeometry& field) {
-  const double half_x = 0.5 * field.field_length + field.boundary_width_goal_line;
-  const double half_y = 0.5 * field.field_width + field.boundary_width;
+  const double half_x = field.wall_half_length();
+  const double half_y = field.wall_half_width();
   return {Vec2(-half_x, -half_y), Vec2(half_x, half_y)};
 }
 
