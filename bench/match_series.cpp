@@ -56,7 +56,8 @@ using ssl::planner::testing::PlannedMatch;
 using ssl::referee::GameEventType;
 
 /// A side of a pairing: a strategy, and for base how it takes its own restarts when not as configured by
-/// default: "base+redirect" (the free-kick set play), "base+kickoff_shot" (kickoffs shot straight),
+/// default: "base+redirect" (the free-kick set play), "base+free_kick_pass" (that set play, else a pass),
+/// "base+kickoff_shot" (kickoffs shot straight),
 /// "base+penalty_shot" (penalties shot from the mark), or several: "base+redirect+kickoff_shot".
 struct Side {
   Strategy strategy = Strategy::kBase;
@@ -82,6 +83,8 @@ std::optional<Side> side_named(const std::string& name) {
     const std::string modifier = name.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
     if (modifier == "redirect") {
       side.free_kick = FreeKickPlay::kRedirect;
+    } else if (modifier == "free_kick_pass") {
+      side.free_kick = FreeKickPlay::kPass;
     } else if (modifier == "kickoff_shot") {
       side.kickoff = KickoffPlay::kShot;
     } else if (modifier == "penalty_shot") {
@@ -430,7 +433,8 @@ int main(int argc, char** argv) {
           "                    [--conditions ideal|realistic|harsh] [--robots 6|11]\n"
           "  plays N seeded whole 6 v 6 matches (division B; --robots 11: 11 v 11 in division A) (default 20;\n"
           "  seeds S, S+1, ...) per pairing of strategies (base, base+redirect: base with the free-kick set\n"
-          "  play, base+kickoff_shot: kickoffs shot straight, base+penalty_shot: penalties shot from the mark,\n"
+          "  play, base+free_kick_pass: that set play, else a pass, base+kickoff_shot: kickoffs shot straight,\n"
+          "  base+penalty_shot: penalties shot from the mark,\n"
           "  or several: base+redirect+kickoff_shot; ball_chaser, wander; default base:ball_chaser and\n"
           "  base:base) in lockstep under the strict_ai rules, halves of --half s of playing time (default 300),\n"
           "  J matches at a time (default: the cores), and prints goals, passes, shots, possession and game\n"

@@ -29,7 +29,7 @@ Fields<PlannerConfig> core_fields() {
           .doc("normal play: base (seeds/001), ball_chaser (every field player runs for the ball, the nearest "
                "shoots: the baseline to beat) or wander (every robot tours waypoints: the referee demos)"),
       config::optional_field("free_kick", &PlannerConfig::free_kick, FreeKickPlay::kShot)
-          .values({{"shot", FreeKickPlay::kShot}, {"redirect", FreeKickPlay::kRedirect}})
+          .values({{"shot", FreeKickPlay::kShot}, {"redirect", FreeKickPlay::kRedirect}, {"pass", FreeKickPlay::kPass}})
           .doc("the base strategy's own free kicks: shot (at the widest open part of their goal) or redirect "
                "(a pass that a teammate shoots on at the first touch, where one rates better than the shot)"),
       config::optional_field("kickoff", &PlannerConfig::kickoff, KickoffPlay::kPass)

@@ -17,8 +17,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <tuple>
@@ -116,6 +118,62 @@ TEST(LiveConditionsSeries, TheTeamsKickTheBallOutAtMostOncePerFortySecondsInPlay
   EXPECT_LE((yellow + blue) / 2.0, in_play / 40);
   EXPECT_LE(yellow, in_play / 30);
   EXPECT_LE(blue, in_play / 30);
+}
+
+/// Whether the sum of per-seed differences lies within the seeds' spread: |sum d| <= 2 sqrt(sum d^2), two
+/// standard deviations of a sum of independent differences of mean 0 whose spread the seeds themselves give.
+/// A team (a colour or a side) that does worse at every seed fails it; noise that changes sign does not.
+bool within_seed_spread(const std::vector<int>& differences) {
+  double sum = 0, squares = 0;
+  for (const int d : differences) {
+    sum += d;
+    squares += static_cast<double>(d) * d;
+  }
+  return std::abs(sum) <= 2 * std::sqrt(squares);
+}
+
+// Item 1 of the live-conditions work: one colour kicked the ball out twice as often as the other for whole
+// live matches. Each seed is played with each colour on each side, so a colour's and a side's difference per
+// seed sums both assignments; over the seeds it must stay within their spread, for goals and for balls out.
+TEST(LiveConditionsSeries, NeitherColourNorSideScoresOrKicksOutMoreThanTheSeedsSpreadAllows) {
+  std::vector<int> colour_goals, colour_outs, side_goals, side_outs;  // yellow - blue, positive - negative
+  std::uint32_t yellow_goals = 0, blue_goals = 0, yellow_outs = 0, blue_outs = 0;
+  std::uint32_t positive_goals = 0, negative_goals = 0, positive_outs = 0, negative_outs = 0;
+  for (const std::uint64_t seed : kSeeds) {
+    int goals_by_colour = 0, outs_by_colour = 0, goals_by_side = 0, outs_by_side = 0;
+    for (const bool blue_positive : {true, false}) {
+      const HalfRecord& half = played_half(seed, blue_positive);
+      ASSERT_TRUE(half.half_ended) << "the first half of seed " << seed << " did not end";
+      const auto& positive = blue_positive ? half.blue : half.yellow;
+      const auto& negative = blue_positive ? half.yellow : half.blue;
+      goals_by_colour += static_cast<int>(half.yellow.score) - static_cast<int>(half.blue.score);
+      outs_by_colour += static_cast<int>(half.yellow.balls_out) - static_cast<int>(half.blue.balls_out);
+      goals_by_side += static_cast<int>(positive.score) - static_cast<int>(negative.score);
+      outs_by_side += static_cast<int>(positive.balls_out) - static_cast<int>(negative.balls_out);
+      yellow_goals += half.yellow.score;
+      blue_goals += half.blue.score;
+      yellow_outs += half.yellow.balls_out;
+      blue_outs += half.blue.balls_out;
+      positive_goals += positive.score;
+      negative_goals += negative.score;
+      positive_outs += positive.balls_out;
+      negative_outs += negative.balls_out;
+    }
+    colour_goals.push_back(goals_by_colour);
+    colour_outs.push_back(outs_by_colour);
+    side_goals.push_back(goals_by_side);
+    side_outs.push_back(outs_by_side);
+  }
+  std::printf("over %zu seeds, both sides each: goals yellow %u, blue %u; positive half %u, negative %u; balls "
+              "out yellow %u, blue %u; positive half %u, negative %u\n",
+              std::size(kSeeds), yellow_goals, blue_goals, positive_goals, negative_goals, yellow_outs, blue_outs,
+              positive_outs, negative_outs);
+  EXPECT_TRUE(within_seed_spread(colour_goals)) << "goals: yellow " << yellow_goals << ", blue " << blue_goals;
+  EXPECT_TRUE(within_seed_spread(colour_outs)) << "balls out: yellow " << yellow_outs << ", blue " << blue_outs;
+  EXPECT_TRUE(within_seed_spread(side_goals)) << "goals: positive half " << positive_goals << ", negative "
+                                              << negative_goals;
+  EXPECT_TRUE(within_seed_spread(side_outs)) << "balls out: positive half " << positive_outs << ", negative "
+                                             << negative_outs;
 }
 
 TEST(LiveConditionsSeries, NoTwoRobotsCloserThanTwoRadiiAndACentimetre) {

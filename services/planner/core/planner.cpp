@@ -258,10 +258,10 @@ bt::NodePtr our_restart(const std::string& name, PlayFunction play, bool with_se
   });
 }
 
-/// Our free kick: with FreeKickPlay::kRedirect the base strategy's set play (free_kick_set_play).
+/// Our free kick: with FreeKickPlay::kRedirect or kPass the base strategy's set play (free_kick_set_play).
 bt::NodePtr our_free_kick_play(const PlannerConfig& config) {
   return our_restart("FreeKick", play_our_free_kick,
-                     config.strategy == Strategy::kBase && config.free_kick == FreeKickPlay::kRedirect,
+                     config.strategy == Strategy::kBase && config.free_kick != FreeKickPlay::kShot,
                      set_up_the_free_kick);
 }
 

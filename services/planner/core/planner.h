@@ -105,8 +105,11 @@ enum class MotionControl { kSimple, kTrajectory };
 enum class Strategy { kBase, kBallChaser, kWander };
 
 /// The base strategy's own free kicks: kShot, the kicker shoots at the widest open part of their goal;
-/// kRedirect, the set play of free_kick_set_play (team_play.h) where one rates better, else the shot.
-enum class FreeKickPlay { kShot, kRedirect };
+/// kRedirect, the set play of free_kick_set_play (team_play.h) where one rates better, else the shot; kPass,
+/// that set play, else a pass to a teammate where the straight shot is poor and a pass rates better, else the
+/// shot. kPass keeps the ball after more free kicks (24-27 % against 10-15 % in 11 v 11 lockstep series) but
+/// scored no more goals there (2.00 against 2.47 a match, 30 seeds), so kShot stays the default.
+enum class FreeKickPlay { kShot, kRedirect, kPass };
 
 /// The base strategy's own kickoffs: kPass, the set play of kickoff_set_play (team_play.h): a pass to a
 /// teammate waiting in our half where one rates, else the shot; kShot, the kicker shoots at their goal.

@@ -479,6 +479,18 @@ void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
                as_role(receive(s, *receiver, {.point = m.pass->point}), Role::kReceiver, "pass"));
 }
 
+std::optional<PassOption> rate_free_kick_pass(const Situation& s, std::uint32_t passer, const TeamPlayParams& params) {
+  const double straight = shot_quality(s, s.ball, passer);
+  if (straight >= params.shoot_quality) return std::nullopt;
+  // Before the kick our robots keep the free kick's distance from their defense area: so does the receiver.
+  const double area_margin = s.config->defense_area_keep_away + s.config->robot_radius + s.config->keep_away_margin;
+  for (const PassOption& option : rate_passes(s, passer, params)) {
+    if (option.score <= straight + params.pass_advantage) break;  // best first
+    if (!s.field.in_their_defense_area(option.point, area_margin)) return option;
+  }
+  return std::nullopt;
+}
+
 std::optional<PassOption> rate_redirect(const Situation& s, std::uint32_t passer, const TeamPlayParams& params) {
   TeamPlayParams rating = params;
   rating.arrival_speed = params.redirect_arrival_speed;
@@ -588,15 +600,28 @@ void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out)
   const TeamPlayParams& params = m.params;
   const std::optional<PassEnds> ends =
       set_play_pass(s, m, params.redirect_set_up_timeout, [&](std::uint32_t kicker) -> std::optional<PassIntent> {
-        const std::optional<PassOption> option = rate_redirect(s, kicker, params);
+        if (const std::optional<PassOption> option = rate_redirect(s, kicker, params)) {
+          return PassIntent{.passer = kicker, .receiver = option->receiver, .point = option->point, .since = s.now,
+                            .one_touch = true};
+        }
+        if (s.config->free_kick != FreeKickPlay::kPass) return std::nullopt;
+        const std::optional<PassOption> option = rate_free_kick_pass(s, kicker, params);
         if (!option) return std::nullopt;
-        return PassIntent{.passer = kicker, .receiver = option->receiver, .point = option->point, .since = s.now,
-                          .one_touch = true};
+        return PassIntent{.passer = kicker, .receiver = option->receiver, .point = option->point, .since = s.now};
       });
   if (!ends) return;
   const PassIntent& pass = *m.pass;
   const wm::RobotState& passer = *ends->passer;
   const wm::RobotState& receiver = *ends->receiver;
+  if (!pass.one_touch) {
+    // A pass to a teammate where it stands (rate_passes): it takes the ball there, the kicker plays it at once.
+    write_intent(s, out, receiver.id,
+                 as_role(receive(s, receiver, {.point = pass.point}), Role::kReceiver, "free_kick_receive"));
+    write_intent(s, out, passer.id,
+                 as_role(planner::pass(s, passer, {.receiver = pass.point, .arrival_speed = arrival_speed(m)}),
+                         Role::kAttacker, "free_kick_pass"));
+    return;
+  }
   const MotionIntent wait = redirect_at(s, m, receiver);
   write_intent(s, out, receiver.id, as_role(wait, Role::kReceiver, "free_kick_redirect"));
   // The kicker passes once the receiver stands still at its spot; until then it waits behind the ball,

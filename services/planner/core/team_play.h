@@ -128,6 +128,11 @@ std::optional<PassOption> rate_pass(const Situation& s, std::uint32_t receiver, 
 /// open part of their goal. PassOption::receiver_shot is the shot quality from the point; nullopt when no
 /// point is better than the straight shot by redirect_advantage.
 std::optional<PassOption> rate_redirect(const Situation& s, std::uint32_t passer, const TeamPlayParams& params = {});
+/// The free kick's pass (FreeKickPlay::kPass) where no one-touch pass rates: when the straight shot is poor
+/// (below shoot_quality), the best of rate_passes that beats it by pass_advantage and whose point keeps the
+/// free kick's distance from their defense area; nullopt otherwise (the straight shot).
+std::optional<PassOption> rate_free_kick_pass(const Situation& s, std::uint32_t passer,
+                                              const TeamPlayParams& params = {});
 
 // ---- the base strategy's steps (planner.cpp's tree calls them in this order) ----------------------------
 /// The coach reads the game and decides the style.
@@ -142,8 +147,9 @@ void pass_ball(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 /// Our free kick in the base strategy, after the free kick play (plays.h) gave the kicker its straight shot:
 /// on the restart's first tick the set play is chosen (rate_redirect); its receiver goes to the point and
-/// waits there, kicker armed, and the kicker passes once the receiver is in place. The pass is the
-/// strategy's pass intent: once the ball is in play the dynamic pass goes on with it.
+/// waits there, kicker armed, and the kicker passes once the receiver is in place. With FreeKickPlay::kPass
+/// and no one-touch pass rated, a pass to a teammate where it stands (rate_free_kick_pass), kicked at once.
+/// The pass is the strategy's pass intent: once the ball is in play the dynamic pass goes on with it.
 void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out);
 /// Our kickoff in the base strategy, after the kickoff play gave the kicker its straight shot: once the
 /// kickoff may be taken (the kickoff play names the kicker, Situation::restart_kicker), the kicker passes to

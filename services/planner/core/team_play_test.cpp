@@ -287,6 +287,42 @@ TEST(TeamPlay, AFreeKickBehindAWallIsPassedRoundItToATeammateWhoShootsItOnAtOnce
   EXPECT_FALSE(rate_redirect(scene.situation(), 1, params));
 }
 
+TEST(TeamPlay, AFreeKickWithNoShotAndNoRedirectIsPassedToAFreeTeammate) {
+  // Division B, our free kick at midfield (FreeKickPlay::kPass): a wall of two 0.6 m ahead and their keeper
+  // hide the goal; no point near their goal for a one-touch shot. Robot 2 stands free on +y.
+  Scene scene({0.0, 0.0});
+  scene.config.free_kick = FreeKickPlay::kPass;
+  scene.s.restart_kicker = 1u;
+  scene.robots = {robot_at({-0.12, 0.0}, 0, 1), robot_at({1.0, 2.2}, 0, 2), robot_at({-2.0, -1.0}, 0, 3)};
+  scene.enemies = {robot_at({0.6, -0.1}, M_PI, 7), robot_at({0.6, 0.1}, M_PI, 8), robot_at({4.4, 0.0}, M_PI, 9)};
+  ASSERT_LT(shot_quality(scene.situation(), scene.s.ball, 1u), TeamPlayParams{}.shoot_quality);
+  ASSERT_FALSE(rate_redirect(scene.situation(), 1));
+  const std::optional<PassOption> option = rate_free_kick_pass(scene.situation(), 1);
+  ASSERT_TRUE(option);
+  EXPECT_EQ(option->receiver, 2u);
+  TeamPlayMemory memory;
+  TeamIntents out;
+  free_kick_set_play(scene.situation(), memory, out);
+  ASSERT_TRUE(memory.pass);
+  EXPECT_EQ(memory.pass->receiver, 2u);
+  EXPECT_FALSE(memory.pass->one_touch);
+  EXPECT_EQ(out.robots[1].tactic, "free_kick_pass");
+  EXPECT_EQ(out.robots[1].skill, "pass");
+  EXPECT_EQ(out.robots[2].tactic, "free_kick_receive");
+  // FreeKickPlay::kRedirect (the set play alone) keeps the straight shot here.
+  scene.config.free_kick = FreeKickPlay::kRedirect;
+  TeamPlayMemory redirect_only;
+  TeamIntents shot;
+  free_kick_set_play(scene.situation(), redirect_only, shot);
+  EXPECT_FALSE(redirect_only.pass);
+  // With the goal open from the ball (no wall, no keeper, 2 m out), the straight shot: no pass.
+  scene.config.free_kick = FreeKickPlay::kPass;
+  scene.s.ball = {2.5, 0.0};
+  scene.robots = {robot_at({2.38, 0.0}, 0, 1), robot_at({1.0, 2.2}, 0, 2), robot_at({-2.0, -1.0}, 0, 3)};
+  scene.enemies.clear();
+  EXPECT_FALSE(rate_free_kick_pass(scene.situation(), 1));
+}
+
 /// Division B, our kickoff may be taken: the kicker (1) behind the ball on the centre mark, the wings (2 on +y,
 /// 3 on -y) beside the centre circle in our half, a defender (4) in front of our defense area; their robots
 /// out of the circle in their half.
