@@ -80,6 +80,10 @@ constexpr double kPullOffGoalLine = 0.4;
 constexpr double kStopInsideField = 1.0;
 /// m of field a clearing direction leaves before a line at the least; fewer only when no direction has it.
 constexpr double kClearMinRoom = 3.0;
+/// Room (rad to the nearest opponent) a clear gives up per radian it turns from the way the robot comes at
+/// the ball: with the opponents moving, the roomiest direction flipped between ticks and a keeper circled a
+/// lying ball in its own defense area for 2-3 s (KEEPER_HELD_BALL about once a match per team, 11 v 11).
+constexpr double kClearTurnCost = 0.3;
 
 /// Whether the ball lies within `clearance` (m) of either defense area.
 bool ball_near_a_defense_area(const Situation& s, double clearance) {
@@ -408,9 +412,12 @@ MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const C
   // Directions from straight upfield to 80 degrees either side whose kicking spot behind the ball lies on
   // the field (a ball on the goal line is cleared along it) and that leave kClearMinRoom of field before a
   // line (any, when none does): the one whose nearest opponent (within 3 m of the ball) is angularly
-  // furthest away. None: straight away from our goal centre. The ball is kicked to come to rest inside.
+  // furthest away, less kClearTurnCost for each radian it turns from the way the robot comes at the ball.
+  // None: straight away from our goal centre. The ball is kicked to come to rest inside.
   Vec2 best = geom::normalized_or(s.ball - s.field.our_goal_center(), Vec2(1, 0));
+  const Vec2 coming = geom::normalized_or(s.ball - robot.position, best);
   double best_room = -1;
+  double best_score = -1e9;
   const double behind = dribbler_distance(s) + 0.2;  // where approach_ball takes the robot
   for (const double min_room : {kClearMinRoom, 0.0}) {
     for (int i = -8; i <= 8; ++i) {
@@ -424,7 +431,9 @@ MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const C
         if (d.norm() > 3.0 || d.norm() < 1e-6) continue;
         room = std::min(room, std::acos(std::clamp(d.normalized().dot(u), -1.0, 1.0)));
       }
-      if (room > best_room + 1e-6) {
+      const double score = room - kClearTurnCost * std::acos(std::clamp(coming.dot(u), -1.0, 1.0));
+      if (score > best_score + 1e-6) {
+        best_score = score;
         best_room = room;
         best = u;
       }

@@ -333,6 +333,20 @@ TEST(Skills, AClearComesToRestInsideTheField) {
   EXPECT_LT(intent.kick_speed, ClearParams{}.speed);
 }
 
+TEST(Skills, AClearWithRoomEveryWayGoesTheWayTheRobotComesAtTheBall) {
+  // Division B, the ball in front of our defense area, no opponent within 3 m: every direction has the same
+  // room. The clear goes the way the robot comes at the ball (no circling round it); it used to take the
+  // first of them, 0.8 rad to the right, whichever way the robot came.
+  for (const double coming : {0.3, -0.5}) {
+    Scene scene({-3.0, 0.0});
+    scene.enemies = {enemy_at({1.5, 0.0}, 1)};
+    const Vec2 from(std::cos(coming), std::sin(coming));
+    const wm::RobotState robot = robot_at(scene.s.ball - from * 0.5, coming, 0);
+    const MotionIntent intent = clear_ball(scene.situation(), robot, {});
+    EXPECT_NEAR(intent.orientation, coming, 0.05 + 1e-9) << "coming at " << coming;
+  }
+}
+
 TEST(Skills, ALongShotComesToRestBeforeTheirGoalLine) {
   // 8 m from their goal centre (beyond kShotRange): the shot is a long ball.
   Scene far({-3.5, 0});
