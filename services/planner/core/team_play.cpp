@@ -479,11 +479,20 @@ void receive_pass(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
                as_role(receive(s, *receiver, {.point = m.pass->point}), Role::kReceiver, "pass"));
 }
 
+namespace {
+
+/// m, centre to their defense area, our robots keep before a free kick is in play (the rule's distance).
+double free_kick_area_margin(const Situation& s) {
+  return s.config->defense_area_keep_away + s.config->robot_radius + s.config->keep_away_margin;
+}
+
+}  // namespace
+
 std::optional<PassOption> rate_free_kick_pass(const Situation& s, std::uint32_t passer, const TeamPlayParams& params) {
   const double straight = shot_quality(s, s.ball, passer);
   if (straight >= params.shoot_quality) return std::nullopt;
   // Before the kick our robots keep the free kick's distance from their defense area: so does the receiver.
-  const double area_margin = s.config->defense_area_keep_away + s.config->robot_radius + s.config->keep_away_margin;
+  const double area_margin = free_kick_area_margin(s);
   for (const PassOption& option : rate_passes(s, passer, params)) {
     if (option.score <= straight + params.pass_advantage) break;  // best first
     if (!s.field.in_their_defense_area(option.point, area_margin)) return option;
@@ -498,7 +507,7 @@ std::optional<PassOption> rate_redirect(const Situation& s, std::uint32_t passer
   rating.max_pass = params.redirect_max_pass;
   const double dd = dribbler_distance(s);
   // Before the kick our robots keep the free kick's distance from their defense area.
-  const double area_margin = s.config->defense_area_keep_away + s.config->robot_radius + s.config->keep_away_margin;
+  const double area_margin = free_kick_area_margin(s);
   const Vec2 goal = s.field.their_goal_center();
   const double straight = shot_quality(s, s.ball, passer);
   std::optional<PassOption> best;
@@ -594,6 +603,18 @@ std::optional<PassEnds> set_play_pass(const Situation& s, TeamPlayMemory& m, dou
   return ends;
 }
 
+/// The set play's pass to a teammate where it stands (rate_passes): the receiver takes it there, the kicker
+/// plays it at once.
+void pass_where_it_stands(const Situation& s, const TeamPlayMemory& m, const PassEnds& ends,
+                          std::string_view receive_tactic, std::string_view pass_tactic, TeamIntents& out) {
+  const Vec2& point = m.pass->point;
+  write_intent(s, out, ends.receiver->id,
+               as_role(receive(s, *ends.receiver, {.point = point}), Role::kReceiver, receive_tactic));
+  write_intent(s, out, ends.passer->id,
+               as_role(planner::pass(s, *ends.passer, {.receiver = point, .arrival_speed = arrival_speed(m)}),
+                       Role::kAttacker, pass_tactic));
+}
+
 }  // namespace
 
 void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
@@ -614,12 +635,7 @@ void free_kick_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out)
   const wm::RobotState& passer = *ends->passer;
   const wm::RobotState& receiver = *ends->receiver;
   if (!pass.one_touch) {
-    // A pass to a teammate where it stands (rate_passes): it takes the ball there, the kicker plays it at once.
-    write_intent(s, out, receiver.id,
-                 as_role(receive(s, receiver, {.point = pass.point}), Role::kReceiver, "free_kick_receive"));
-    write_intent(s, out, passer.id,
-                 as_role(planner::pass(s, passer, {.receiver = pass.point, .arrival_speed = arrival_speed(m)}),
-                         Role::kAttacker, "free_kick_pass"));
+    pass_where_it_stands(s, m, *ends, "free_kick_receive", "free_kick_pass", out);
     return;
   }
   const MotionIntent wait = redirect_at(s, m, receiver);
@@ -648,12 +664,7 @@ void kickoff_set_play(const Situation& s, TeamPlayMemory& m, TeamIntents& out) {
         return PassIntent{.passer = kicker, .receiver = best->receiver, .point = best->point, .since = s.now};
       });
   if (!ends) return;
-  const PassIntent& pass = *m.pass;
-  write_intent(s, out, ends->receiver->id,
-               as_role(receive(s, *ends->receiver, {.point = pass.point}), Role::kReceiver, "kickoff_receive"));
-  write_intent(s, out, ends->passer->id,
-               as_role(planner::pass(s, *ends->passer, {.receiver = pass.point, .arrival_speed = arrival_speed(m)}),
-                       Role::kAttacker, "kickoff_pass"));
+  pass_where_it_stands(s, m, *ends, "kickoff_receive", "kickoff_pass", out);
 }
 
 namespace {
