@@ -71,6 +71,8 @@ class Field {
   bool in_field(const Vec2& p, double margin = 0) const {
     return std::abs(p.x()) <= half_length() + margin && std::abs(p.y()) <= half_width() + margin;
   }
+  /// Whether a ball centred at `p` is still in the field: it leaves only once wholly beyond a line.
+  bool ball_in_field(const Vec2& p) const { return in_field(p, size_.ball_radius); }
   /// m from `from` (inside the field) along the unit direction `u` until a field line is crossed: how far a
   /// ball sent that way stays in. 0 from a point on or outside a line it is moving across.
   double distance_inside(const Vec2& from, const Vec2& u) const {
@@ -93,6 +95,16 @@ class Field {
            std::abs(p.y()) <= size_.penalty_area_width / 2 + margin;
   }
   bool in_center_circle(const Vec2& p) const { return p.norm() <= size_.center_circle_radius; }
+  /// m from `p` to the nearer side wall of our goal: the wall from its post on the goal line back by the
+  /// goal's depth (its thickness is not counted).
+  double distance_to_our_goal_walls(const Vec2& p) const {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Vec2& post : our_goal_posts()) {
+      const double x = std::clamp(p.x(), post.x() - size_.goal_depth, post.x());
+      nearest = std::min(nearest, std::hypot(p.x() - x, p.y() - post.y()));
+    }
+    return nearest;
+  }
   /// Inside either goal: behind its goal line, between its side walls.
   bool in_goal(const Vec2& p) const {
     return std::abs(p.x()) > half_length() && std::abs(p.y()) < size_.goal_width / 2;

@@ -40,6 +40,23 @@ TEST(WorldModelField, AreasContainTheRightPoints) {
   EXPECT_TRUE(field.in_our_half({-0.1, 2}));
 }
 
+TEST(WorldModelField, ABallLeavesTheFieldOnlyWhollyBeyondALine) {
+  const Field field;  // division A: 12 x 9, ball radius 0.0215
+  EXPECT_TRUE(field.ball_in_field({-6.02, 0.5})) << "centre 2 cm behind the goal line: still on it";
+  EXPECT_FALSE(field.ball_in_field({-6.022, 0.5}));
+  EXPECT_TRUE(field.ball_in_field({1.0, 4.52}));
+  EXPECT_FALSE(field.ball_in_field({1.0, -4.53}));
+}
+
+TEST(WorldModelField, DistanceToOurGoalWallsIsToTheNearerWallFromItsPostBack) {
+  const Field field;  // division A: posts at y = +-0.9 on x = -6, goal depth 0.18
+  EXPECT_NEAR(field.distance_to_our_goal_walls({-5.95, -0.81}), std::hypot(0.05, 0.09), 1e-12)
+      << "in front of the post";
+  EXPECT_NEAR(field.distance_to_our_goal_walls({-6.1, -0.7}), 0.2, 1e-12) << "beside the wall, inside the goal";
+  EXPECT_NEAR(field.distance_to_our_goal_walls({-6.3, 0.9}), 0.12, 1e-12) << "behind the goal";
+  EXPECT_NEAR(field.distance_to_our_goal_walls({-5.0, 0.3}), std::hypot(1.0, 0.6), 1e-12);
+}
+
 TEST(WorldModelField, DistanceInsideIsToTheFirstLineCrossed) {
   const Field field;  // division A: 12 x 9
   EXPECT_NEAR(field.distance_inside({0, 0}, {1, 0}), 6.0, 1e-12);

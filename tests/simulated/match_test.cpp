@@ -1,5 +1,6 @@
 // A whole unattended match, start to finish, as `./ssl up` plays it: the Bullet simulator with realistic
-// vision, both teams' world models and planners, and the built-in referee with the `simulation` profile
+// vision and robots answering late (the harness's `realistic` conditions), both teams' world models and
+// planners, and the built-in referee with the `simulation` profile
 // (goals with the ball placed back on the centre mark by the simulator, balls out of the field, keep-out,
 // no progress, half time with the side swap, the final whistle), all in lockstep in one process
 // (planner::testing::PlannedMatch). The halves are shortened to 2 x 120 s of playing time and the half-time

@@ -755,7 +755,7 @@ constexpr double kKeeperClearLead = 0.3;      // m the keeper must be nearer a b
 
 bool keeper_should_clear(const Situation& s) {
   if (!s.keeper || !s.ball_known || s.ball_velocity.norm() > kKeeperClearMaxSpeed ||
-      !s.field.in_our_defense_area(s.ball, kKeeperClearMargin) || !s.field.in_field(s.ball)) {
+      !s.field.in_our_defense_area(s.ball, kKeeperClearMargin) || !s.field.ball_in_field(s.ball)) {
     return false;
   }
   if (s.field.in_our_defense_area(s.ball, 0.0)) return true;

@@ -75,15 +75,30 @@ constexpr double kAreaEdgeClosingSpeed = 0.5;
 constexpr double kAreaEdgeClearance = 0.15;
 /// m a ball on our goal line beside a post is pulled out by the robot clearing it (clear_ball).
 constexpr double kPullOffGoalLine = 0.4;
+/// m from the dribbler within which that ball is touched and the pull starts.
+constexpr double kPullContact = 0.015;
+/// m/s of that pull: reversing at the dribble's 1 m/s the robot lost the ball after 5-10 cm (realistic).
+constexpr double kPullSpeed = 0.4;
 /// m before the first field line on its way that a cleared ball or a long ball comes to rest (the straight
 /// ball model's error and a bounce off a robot stay inside).
 constexpr double kStopInsideField = 1.0;
 /// m of field a clearing direction leaves before a line at the least; fewer only when no direction has it.
 constexpr double kClearMinRoom = 3.0;
-/// Room (rad to the nearest opponent) a clear gives up per radian it turns from the way the robot comes at
-/// the ball: with the opponents moving, the roomiest direction flipped between ticks and a keeper circled a
-/// lying ball in its own defense area for 2-3 s (KEEPER_HELD_BALL about once a match per team, 11 v 11).
+/// Room (rad to the nearest opponent) a clear gives up per radian it turns from the robot's heading: with
+/// the opponents moving, the roomiest direction flipped between ticks and a keeper circled a lying ball in
+/// its own defense area for 2-3 s (KEEPER_HELD_BALL about once a match per team, 11 v 11). The heading, not
+/// the way the robot comes at the ball: getting behind the ball turns the robot to the chosen direction, so
+/// the choice holds, while the robot's bearing to the ball drifts as it goes round.
 constexpr double kClearTurnCost = 0.3;
+/// rad either side of straight upfield a clear may go; kClearWideFan where no direction within kClearFan
+/// has its kicking spot on the field (a ball on our goal line, the keeper inside the goal mouth: along the
+/// line, away from the goal, at once, rather than round to the field side for a pull, which took the keeper
+/// past the 5 s it may keep the ball in its area); every kClearStep.
+constexpr double kClearFan = 0.8;
+constexpr double kClearWideFan = 1.5;
+constexpr double kClearStep = 0.1;
+/// m a robot kicking a clear keeps from our goal's walls (a post beside the ball).
+constexpr double kClearWallClearance = 0.005;
 
 /// Whether the ball lies within `clearance` (m) of either defense area.
 bool ball_near_a_defense_area(const Situation& s, double clearance) {
@@ -128,12 +143,14 @@ void kick_through(const Situation& s, const wm::RobotState& robot, const Vec2& u
 }
 
 /// Get behind the ball on the line along `u`: align when already close behind it, else go around it.
-void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent& intent) {
+/// Aligned, the target leaves `gap` (m) between dribbler and ball: negative goes into the ball, to take it.
+void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent& intent,
+                   double gap = 0.01) {
   const Vec2 rel = robot.position - s.ball;
   const double dd = dribbler_distance(s);
   intent.orientation = geom::angle_of(u).radians();
   if (rel.dot(u) < -0.06 && std::abs(geom::cross(u, rel)) < 0.08) {
-    intent.target = s.ball - u * (dd + 0.01);
+    intent.target = s.ball - u * (dd + gap);
     close_on_ball(s, robot, u, intent);
   } else {
     intent.target = s.ball - u * (dd + 0.2);
@@ -409,47 +426,64 @@ double kick_speed_kept_in(const Situation& s, const Vec2& u, double speed, doubl
 }
 
 MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const ClearParams& p) {
-  // Directions from straight upfield to 80 degrees either side whose kicking spot behind the ball lies on
-  // the field (a ball on the goal line is cleared along it) and that leave kClearMinRoom of field before a
-  // line (any, when none does): the one whose nearest opponent (within 3 m of the ball) is angularly
-  // furthest away, less kClearTurnCost for each radian it turns from the way the robot comes at the ball.
-  // None: straight away from our goal centre. The ball is kicked to come to rest inside.
+  // Directions from straight upfield to kClearFan either side whose kicking spot behind the ball lies on the
+  // field, with the robot kicking there clear of our goal's walls, and that leave kClearMinRoom of field
+  // before a line (any, when none does): the one whose nearest opponent (within 3 m of the ball) is
+  // angularly furthest away, less kClearTurnCost for each radian it turns from the robot's heading. None
+  // within kClearFan (the ball on our goal line): along the line, within kClearWideFan, away from the goal.
+  // None there either: straight away from our goal centre. The ball is kicked to come to rest inside.
   Vec2 best = geom::normalized_or(s.ball - s.field.our_goal_center(), Vec2(1, 0));
-  const Vec2 coming = geom::normalized_or(s.ball - robot.position, best);
+  const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
   double best_room = -1;
   double best_score = -1e9;
-  const double behind = dribbler_distance(s) + 0.2;  // where approach_ball takes the robot
-  for (const double min_room : {kClearMinRoom, 0.0}) {
-    for (int i = -8; i <= 8; ++i) {
-      const double angle = i * 0.1;
-      const Vec2 u(std::cos(angle), std::sin(angle));
-      if (!s.field.in_field(s.ball - u * behind, s.zones.field_margin)) continue;
-      if (s.field.distance_inside(s.ball, u) < min_room) continue;
-      double room = M_PI;
-      for (const wm::RobotState& enemy : s.enemies) {
-        const Vec2 d = enemy.position - s.ball;
-        if (d.norm() > 3.0 || d.norm() < 1e-6) continue;
-        room = std::min(room, std::acos(std::clamp(d.normalized().dot(u), -1.0, 1.0)));
+  const double dd = dribbler_distance(s);
+  const double behind = dd + 0.2;  // where approach_ball takes the robot
+  for (const double fan : {kClearFan, kClearWideFan}) {
+    for (const double min_room : {kClearMinRoom, 0.0}) {
+      const int steps = static_cast<int>(std::lround(fan / kClearStep));
+      for (int i = -steps; i <= steps; ++i) {
+        const double angle = i * kClearStep;
+        const Vec2 u(std::cos(angle), std::sin(angle));
+        if (std::abs(angle) > kClearFan + 1e-9 && u.y() * s.ball.y() < 0) continue;  // across our goal mouth
+        if (!s.field.in_field(s.ball - u * behind, s.zones.field_margin)) continue;
+        if (s.field.distance_to_our_goal_walls(s.ball - u * dd) < radius(s) + kClearWallClearance) continue;
+        if (s.field.distance_inside(s.ball, u) < min_room) continue;
+        double room = M_PI;
+        for (const wm::RobotState& enemy : s.enemies) {
+          const Vec2 d = enemy.position - s.ball;
+          if (d.norm() > 3.0 || d.norm() < 1e-6) continue;
+          room = std::min(room, std::acos(std::clamp(d.normalized().dot(u), -1.0, 1.0)));
+        }
+        const double score = room - kClearTurnCost * std::acos(std::clamp(heading.dot(u), -1.0, 1.0));
+        if (score > best_score + 1e-6) {
+          best_score = score;
+          best_room = room;
+          best = u;
+        }
       }
-      const double score = room - kClearTurnCost * std::acos(std::clamp(coming.dot(u), -1.0, 1.0));
-      if (score > best_score + 1e-6) {
-        best_score = score;
-        best_room = room;
-        best = u;
-      }
+      if (best_room >= 0) break;
     }
     if (best_room >= 0) break;
   }
   if (best_room < 0 && std::abs(s.ball.y()) > s.field.size().goal_width / 2) {
-    // On our goal line beside a post: no kicking spot behind the ball on the field, and along the line the
-    // post stands in the way (a keeper tried for minutes). Taken on the dribbler from the field side and
-    // pulled out, then cleared from there.
-    MotionIntent intent = holds_ball(s, robot)
-                              ? go_to_point(s, robot, {.point = robot.position + Vec2(kPullOffGoalLine, 0),
-                                                       .orientation = robot.orientation,
-                                                       .with_ball = true})
-                              : go_to_ball(s, robot, {.final_speed = kTouchClosingSpeed / 2});
-    intent.skill = skill_name(Skill::kClear);
+    // On our goal line just beyond a post: no kicking spot behind the ball on the field, and along the line
+    // the post stands in the way (a keeper tried for minutes; coming along the line it stuck on the post 4 cm
+    // short of the ball, which holds_ball counts as held). Taken on the dribbler facing the goal line, from
+    // the field side, and pulled out, then cleared from there. The pull starts at the touch: from
+    // holds_ball's 4 cm the robot, 75 ms from camera to wheels, reversed before its dribbler had the ball.
+    const Vec2 facing_goal_line(-1, 0);
+    const bool touching = (s.ball - robot.position).norm() < dd + kPullContact;
+    if (touching && heading.dot(facing_goal_line) > std::cos(kHoldAngle)) {
+      MotionIntent intent = go_to_point(s, robot, {.point = robot.position + Vec2(kPullOffGoalLine, 0),
+                                                   .orientation = robot.orientation,
+                                                   .with_ball = true,
+                                                   .max_speed = kPullSpeed});
+      intent.skill = skill_name(Skill::kClear);
+      return intent;
+    }
+    MotionIntent intent = base(s, Skill::kClear);
+    approach_ball(s, robot, facing_goal_line, intent, -0.01);
+    intent.dribble = true;
     return intent;
   }
   return kick_along(s, robot, best, kick_speed_kept_in(s, best, p.speed, kStopInsideField), Skill::kClear);

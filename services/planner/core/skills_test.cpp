@@ -333,18 +333,56 @@ TEST(Skills, AClearComesToRestInsideTheField) {
   EXPECT_LT(intent.kick_speed, ClearParams{}.speed);
 }
 
-TEST(Skills, AClearWithRoomEveryWayGoesTheWayTheRobotComesAtTheBall) {
+TEST(Skills, AClearWithRoomEveryWayGoesTheWayTheRobotFaces) {
   // Division B, the ball in front of our defense area, no opponent within 3 m: every direction has the same
-  // room. The clear goes the way the robot comes at the ball (no circling round it); it used to take the
-  // first of them, 0.8 rad to the right, whichever way the robot came.
-  for (const double coming : {0.3, -0.5}) {
-    Scene scene({-3.0, 0.0});
-    scene.enemies = {enemy_at({1.5, 0.0}, 1)};
-    const Vec2 from(std::cos(coming), std::sin(coming));
-    const wm::RobotState robot = robot_at(scene.s.ball - from * 0.5, coming, 0);
-    const MotionIntent intent = clear_ball(scene.situation(), robot, {});
-    EXPECT_NEAR(intent.orientation, coming, 0.05 + 1e-9) << "coming at " << coming;
+  // room. The clear goes the way the robot faces, wherever it stands round the ball: getting behind the ball
+  // turns it that way, so the choice holds while its bearing to the ball drifts. It used to take the first
+  // direction, 0.8 rad to the right, whichever way the robot came.
+  for (const double facing : {0.3, -0.5}) {
+    for (const double bearing : {0.0, 0.6}) {
+      Scene scene({-3.0, 0.0});
+      scene.enemies = {enemy_at({1.5, 0.0}, 1)};
+      const Vec2 from(std::cos(bearing), std::sin(bearing));
+      const wm::RobotState robot = robot_at(scene.s.ball - from * 0.5, facing, 0);
+      const MotionIntent intent = clear_ball(scene.situation(), robot, {});
+      EXPECT_NEAR(intent.orientation, facing, 0.05 + 1e-9) << "facing " << facing << ", bearing " << bearing;
+    }
   }
+}
+
+TEST(Skills, AClearOfABallOnOurGoalLineBesideAPostGoesAlongTheLineAwayFromTheGoal) {
+  // Division B (posts at y = +-0.5): the ball 6 cm inside our goal line, 1 cm beyond a post's line, the
+  // keeper inside the goal mouth facing it. No kicking spot behind the ball within 0.8 rad of upfield lies on
+  // the field, so the clear goes along the line, away from the goal (not across the mouth), from inside the
+  // mouth where the robot kicking clears the post.
+  Scene scene({-4.44, -0.51});
+  const wm::RobotState keeper = robot_at({-4.4, -0.2}, -M_PI / 2, 0);
+  const MotionIntent intent = clear_ball(scene.situation(), keeper, {});
+  EXPECT_GT(intent.orientation, -M_PI / 2) << "not back towards the goal line";
+  EXPECT_LT(intent.orientation, -1.2) << "along the line";
+  const Vec2 u = geom::Angle::from_radians(intent.orientation).to_unit_vector();
+  EXPECT_GE(scene.s.field.distance_to_our_goal_walls(scene.s.ball - u * kDribbler), 0.09);
+}
+
+TEST(Skills, ABallJustBeyondAPostOnOurGoalLineIsTakenFromTheFieldSideAndPulledOnceTouched) {
+  // Division B: the ball 1 cm inside our goal line, 7 cm beyond a post: along the line the post stands where
+  // the robot would kick, and no spot behind it upfield lies on the field. The robot comes round to the field
+  // side facing the goal line; 3 cm short of the ball (within holds_ball's reach) it still closes in, into
+  // the ball; touching it, it pulls the ball out upfield, slowly.
+  Scene scene({-4.49, -0.57});
+  MotionIntent intent = clear_ball(scene.situation(), robot_at({-4.0, -0.3}, 0.0, 0), {});
+  EXPECT_GT(intent.target.x(), scene.s.ball.x() + kDribbler + 0.1) << "round to the field side first";
+  EXPECT_NEAR(std::abs(intent.orientation), M_PI, 1e-9);
+  EXPECT_TRUE(intent.dribble);
+  const wm::RobotState short_of_it = robot_at(scene.s.ball + Vec2(kDribbler + 0.03, 0), M_PI, 0);
+  intent = clear_ball(scene.situation(), short_of_it, {});
+  EXPECT_LT(intent.target.x(), scene.s.ball.x() + kDribbler) << "closing in, into the ball";
+  EXPECT_EQ(intent.kick, KickType::kNone);
+  const wm::RobotState touching = robot_at(scene.s.ball + Vec2(kDribbler + 0.005, 0), M_PI, 0);
+  intent = clear_ball(scene.situation(), touching, {});
+  EXPECT_GT(intent.target.x(), touching.position.x() + 0.3) << "pulled out upfield";
+  EXPECT_LE(intent.max_speed, 0.5);
+  EXPECT_TRUE(intent.dribble);
 }
 
 TEST(Skills, ALongShotComesToRestBeforeTheirGoalLine) {

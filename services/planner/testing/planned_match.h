@@ -54,11 +54,10 @@ std::optional<Conditions> conditions_named(std::string_view name);
 const char* to_string(Conditions conditions);
 
 struct PlannedMatchOptions {
-  // The scenario and whole-match tests still run under kIdeal: 27 of them fail under kRealistic today
-  // (penalties, 3 v 3 keep-away, dribbling, man-marking, the contact-free trajectory match, base against
-  // ball_chaser), which is the open part of making the play hold up outside the lab. bench/match_series
-  // plays under kRealistic by default.
-  Conditions conditions = Conditions::kIdeal;
+  // The scenario and whole-match tests, bench/match_series and the lockstep benches play under kRealistic;
+  // the scenarios that do not hold there yet ask for kIdeal and say why (planner_referee_sim_test's
+  // kNotYetRealistic, the world model's match accuracy).
+  Conditions conditions = Conditions::kRealistic;
   sim::FieldGeometry field = sim::FieldGeometry::division_b();
   std::uint32_t robots = 6;  // per team
   std::uint64_t seed = 1;
