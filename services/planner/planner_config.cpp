@@ -30,8 +30,9 @@ Fields<PlannerConfig> core_fields() {
                "shoots: the baseline to beat) or wander (every robot tours waypoints: the referee demos)"),
       config::optional_field("free_kick", &PlannerConfig::free_kick, FreeKickPlay::kShot)
           .values({{"shot", FreeKickPlay::kShot}, {"redirect", FreeKickPlay::kRedirect}, {"pass", FreeKickPlay::kPass}})
-          .doc("the base strategy's own free kicks: shot (at the widest open part of their goal) or redirect "
-               "(a pass that a teammate shoots on at the first touch, where one rates better than the shot)"),
+          .doc("the base strategy's own free kicks: shot (at the widest open part of their goal), redirect "
+               "(a pass that a teammate shoots on at the first touch, where one rates better than the shot) or "
+               "pass (redirect, else a pass to a teammate where the shot is poor and the pass rates better)"),
       config::optional_field("kickoff", &PlannerConfig::kickoff, KickoffPlay::kPass)
           .values({{"pass", KickoffPlay::kPass}, {"shot", KickoffPlay::kShot}})
           .doc("the base strategy's own kickoffs: pass (to a teammate waiting in our half, where one rates, "

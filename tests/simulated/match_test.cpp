@@ -1,9 +1,8 @@
 // A whole unattended match, start to finish, as `./ssl up` plays it: the Bullet simulator with realistic
 // vision and robots answering late (the harness's `realistic` conditions), both teams' world models and
-// planners, and the built-in referee with the `simulation` profile
-// (goals with the ball placed back on the centre mark by the simulator, balls out of the field, keep-out,
-// no progress, half time with the side swap, the final whistle), all in lockstep in one process
-// (planner::testing::PlannedMatch). The halves are shortened to 2 x 120 s of playing time and the half-time
+// planners, and the built-in referee with the `simulation` profile (goals with the ball placed back on the
+// centre mark by the simulator, balls out of the field, keep-out, no progress, half time with the side swap,
+// the final whistle), all in lockstep in one process (planner::testing::PlannedMatch). The halves are shortened to 2 x 120 s of playing time and the half-time
 // break to 10 s so that the whole match runs in CI; everything else is the profile as shipped.
 //
 // The match is played once (the suite's set-up) and each test reads one property of it:

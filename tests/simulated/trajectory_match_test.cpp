@@ -1,9 +1,9 @@
 // Planner II in a whole match: both teams drive with `motion: trajectory` (time-optimal trajectories along
 // a searched path, then the contact guard) through a 6 v 6 lockstep match with the built-in referee's
 // `simulation` profile under the harness's `realistic` conditions, halves shortened to 2 x 60 s of playing
-// time. Checked against the simulator's
-// ground truth at every camera frame: no two robots ever closer than two radii + 1 cm (the bar;
-// planner I's controller drives robots 2.4 cm into each other), and the referee raises no bot crash.
+// time. Checked against the simulator's ground truth at every camera frame: no two robots ever closer than
+// two radii + 1 cm (the bar; planner I's controller drives robots 2.4 cm into each other), and the
+// referee raises no bot crash.
 // TRAJECTORY_MATCH_SEED=n plays another seed.
 #include <gtest/gtest.h>
 

@@ -35,7 +35,6 @@ constexpr double kSimilarGap = 0.8;
 constexpr double kAreaTouchClearance = 0.02;
 /// m: a slow ball this close to the receiving point is fetched by the receiver.
 constexpr double kTakeNearPoint = 1.0;
-constexpr double kHoldContact = 0.04;  // m beyond touching: the ball is at the dribbler (holds_ball)
 constexpr double kHoldAngle = 0.35;    // rad off the heading the held ball may lie (holds_ball)
 
 double radius(const Situation& s) { return s.config->robot_radius; }
@@ -142,6 +141,9 @@ void kick_through(const Situation& s, const wm::RobotState& robot, const Vec2& u
   intent.kick_speed = std::min(speed, rules::kMaxBallSpeed - 0.3);
 }
 
+/// m beyond the dribbler distance behind the ball where approach_ball stages a robot not yet behind it.
+constexpr double kStagingBehind = 0.2;
+
 /// Get behind the ball on the line along `u`: align when already close behind it, else go around it.
 /// Aligned, the target leaves `gap` (m) between dribbler and ball: negative goes into the ball, to take it.
 void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent& intent,
@@ -153,7 +155,7 @@ void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& 
     intent.target = s.ball - u * (dd + gap);
     close_on_ball(s, robot, u, intent);
   } else {
-    intent.target = s.ball - u * (dd + 0.2);
+    intent.target = s.ball - u * (dd + kStagingBehind);
     intent.avoid_ball_radius = dd + 0.1;
   }
 }
@@ -250,10 +252,10 @@ bool behind_ball_facing(const Situation& s, const wm::RobotState& robot, const V
          heading.dot(u) > std::cos(max_heading_error);
 }
 
-bool holds_ball(const Situation& s, const wm::RobotState& robot) {
+bool holds_ball(const Situation& s, const wm::RobotState& robot, double reach) {
   const Vec2 to_ball = s.ball - robot.position;
   const Vec2 heading = geom::Angle::from_radians(robot.orientation).to_unit_vector();
-  return to_ball.norm() < dribbler_distance(s) + kHoldContact &&
+  return to_ball.norm() < dribbler_distance(s) + reach &&
          geom::normalized_or(to_ball, heading).dot(heading) > std::cos(kHoldAngle);
 }
 
@@ -437,7 +439,7 @@ MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const C
   double best_room = -1;
   double best_score = -1e9;
   const double dd = dribbler_distance(s);
-  const double behind = dd + 0.2;  // where approach_ball takes the robot
+  const double behind = dd + kStagingBehind;  // where approach_ball takes the robot
   for (const double fan : {kClearFan, kClearWideFan}) {
     for (const double min_room : {kClearMinRoom, 0.0}) {
       const int steps = static_cast<int>(std::lround(fan / kClearStep));
@@ -472,8 +474,7 @@ MotionIntent clear_ball(const Situation& s, const wm::RobotState& robot, const C
     // the field side, and pulled out, then cleared from there. The pull starts at the touch: from
     // holds_ball's 4 cm the robot, 75 ms from camera to wheels, reversed before its dribbler had the ball.
     const Vec2 facing_goal_line(-1, 0);
-    const bool touching = (s.ball - robot.position).norm() < dd + kPullContact;
-    if (touching && heading.dot(facing_goal_line) > std::cos(kHoldAngle)) {
+    if (holds_ball(s, robot, kPullContact) && heading.dot(facing_goal_line) > std::cos(kHoldAngle)) {
       MotionIntent intent = go_to_point(s, robot, {.point = robot.position + Vec2(kPullOffGoalLine, 0),
                                                    .orientation = robot.orientation,
                                                    .with_ball = true,

@@ -183,8 +183,9 @@ Vec2 shot_target(const Situation& s, std::optional<std::uint32_t> shooter = std:
 /// Behind the ball on the line along `u` (where a kick sends it), the dribbler at it, facing along `u`
 /// within `max_heading_error` (rad): a kick now goes along `u`.
 bool behind_ball_facing(const Situation& s, const wm::RobotState& robot, const Vec2& u, double max_heading_error);
-/// The ball lies at `robot`'s dribbler (within 4 cm of touching it), in front of it (within 0.35 rad).
-bool holds_ball(const Situation& s, const wm::RobotState& robot);
+/// The ball lies at `robot`'s dribbler (within `reach` m of touching it: 4 cm by default), in front of it
+/// (within 0.35 rad).
+bool holds_ball(const Situation& s, const wm::RobotState& robot, double reach = 0.04);
 /// A shot at our goal: the ball's path from where it is to where it crosses our goal line inside the mouth
 /// (plus a margin), for a ball at least 0.5 m/s fast coming our way from any angle; nullopt otherwise.
 std::optional<geom::Segment> shot_path(const Situation& s);
