@@ -787,9 +787,7 @@ TEST_P(PlannerSimReferee, OurBallPlacementDiagonallyOverTheField) {
 }
 
 TEST_P(PlannerSimReferee, OurBallPlacementOutOfTheCornerInsideTheField) {
-  // kNotYetRealistic: in 3 of the 8 the placer's releases push the ball 0.1-0.2 m past the target again and
-  // again; it is not placed within the 15 s.
-  LockstepMatch m(param(), seed(), kNotYetRealistic);
+  LockstepMatch m(param(), seed());
   default_layout(m);
   // The ball in their corner, 0.15 m from both lines, to a point 0.85 m along the touch line: the placer
   // has to get between the ball and the corner (it may leave the field by 0.05 m).

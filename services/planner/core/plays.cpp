@@ -538,6 +538,9 @@ bool approachable_from_behind(const Situation& s, const Vec2& ball, const Vec2& 
   return std::abs(behind.x()) <= reach_x && std::abs(behind.y()) <= reach_y;
 }
 
+/// m/s under which the placer (and the ball it carries) counts as at rest: it lets the ball go only then.
+constexpr double kReleaseSpeed = 0.1;
+
 void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents& out) {
   if (!s.placement_target) {
     play_stop(s, memory, out, "our_ball_placement_no_target");
@@ -583,7 +586,8 @@ void play_our_ball_placement(const Situation& s, PlayMemory& memory, TeamIntents
         }
         break;
       case P::kCarry:
-        if (ball_error < 0.04) {
+        // Released at rest only: a placer still rolling pushes the ball on as the dribbler lets go.
+        if (ball_error < 0.04 && placer->velocity.norm() < kReleaseSpeed && s.ball_velocity.norm() < kReleaseSpeed) {
           memory.place_phase = P::kRelease;
         } else if (!held && rel.norm() > dd + 0.1) {
           memory.place_phase = P::kApproach;
