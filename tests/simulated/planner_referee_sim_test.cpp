@@ -6,8 +6,9 @@
 // `realistic` conditions (robots answering about 75 ms after the camera with a lagging velocity and +-10 %
 // limits; the scenarios that do not hold there yet run under `ideal` and say why: kNotYetRealistic). Every
 // 10 ms tick: referee -> world models -> planners -> simulator commands (local velocities, flat kick / chip,
-// dribbler) -> 10 ms of simulated time -> camera frames into the world models -> validation functions. Simulated time only: no
-// threads, no sleeps, no DDS; the same seed gives the same match (PLANNER_SIM_SEED=n runs another seed).
+// dribbler) -> 10 ms of simulated time -> camera frames into the world models -> validation functions.
+// Simulated time only: no threads, no sleeps, no DDS; the same seed gives the same match (PLANNER_SIM_SEED=n
+// runs another seed).
 //
 // The VALIDATION FUNCTIONS (seeds/003, tests/support/validation.h) read the simulator's GROUND TRUTH (its
 // snapshot after each tick), never the world model: a planner that believes it obeys the rules but does not
