@@ -38,6 +38,9 @@ struct MotionIntent {
   double max_angular_speed = std::numeric_limits<double>::infinity();  // rad/s (below the robot's limit)
   double avoid_ball_radius = 0;           // m, robot centre keeps this far from the ball; 0: may touch it
   bool keep_off_ball = false;             // no business at the ball: clear of it as it rolls (trajectory motion)
+  bool contests_ball = false;             // goes for the ball (not yet dribbling or armed) or stands in
+                                          // its way (keeper, blocker): the contact guard lets it contest
+                                          // the ball with robots there
   bool guard_ball_circle = false;         // that circle is a hard limit on the command too (the zone guard)
   bool avoid_placement_corridor = false;  // keep out of the ball -> designated position stadium
   bool avoid_their_defense_area = true;   // keep the rule distance (+ margin) from their defense area

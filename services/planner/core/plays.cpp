@@ -300,6 +300,7 @@ MotionIntent keeper_intent(const Situation& s, const MotionIntent& tmpl, bool to
   if (!keeper) return intent;
   const MotionIntent skill = defend_goal(s, *keeper, {.touch_line = touch_line});
   intent.avoid_our_defense_area = skill.avoid_our_defense_area;
+  intent.contests_ball = skill.contests_ball;
   intent.target = skill.target;
   intent.orientation = skill.orientation;
   intent.skill = skill.skill;

@@ -151,6 +151,7 @@ void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& 
   const Vec2 rel = robot.position - s.ball;
   const double dd = dribbler_distance(s);
   intent.orientation = geom::angle_of(u).radians();
+  intent.contests_ball = true;
   if (rel.dot(u) < -0.06 && std::abs(geom::cross(u, rel)) < 0.08) {
     intent.target = s.ball - u * (dd + gap);
     close_on_ball(s, robot, u, intent);
@@ -160,6 +161,10 @@ void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& 
   }
 }
 
+/// m short of the ball's contact point where a kicker not yet armed stops: inside the arming window, so it
+/// arms as soon as it is in line, and its overshoot (2-3 cm with a lagging robot) never pushes the ball
+/// unarmed. A push at a restart sets the ball in play, and the kick after it is a double touch.
+constexpr double kUnarmedGap = 0.04;
 /// Kick along `u` at `speed` once behind the ball facing that way, else get there.
 MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const Vec2& u, double speed, Skill skill) {
   MotionIntent intent = base(s, skill);
@@ -183,7 +188,7 @@ MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const V
       intent.target = s.ball + u * std::max(through, contact_through);
     }
   } else {
-    approach_ball(s, robot, u, intent);
+    approach_ball(s, robot, u, intent, kUnarmedGap);
   }
   return intent;
 }
@@ -568,12 +573,14 @@ MotionIntent block(const Situation& s, const wm::RobotState& robot, const BlockP
   intent.target = opponent->position + direction * p.distance;
   intent.orientation = heading_to(intent.target, opponent->position);
   intent.avoid_ball_radius = 0;
+  intent.contests_ball = true;
   return intent;
 }
 
 MotionIntent defend_goal(const Situation& s, const wm::RobotState& robot, const DefendGoalParams& p) {
   MotionIntent intent = base(s, Skill::kDefendGoal);
   intent.avoid_our_defense_area = false;
+  intent.contests_ball = true;
   const double goal_line = -s.field.half_length();
   const double max_y = s.field.size().goal_width / 2 - radius(s) - 0.01;  // clear of the posts
   // The bisector of the angle the two posts make at the ball: a keeper on it covers both sides equally.

@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <span>
 
 #include "services/planner/core/motion.h"
 #include "services/planner/core/path_search.h"
@@ -103,16 +104,25 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
     return std::max(params_.guard_latency,
                     params_.actuation_latency + (latency_measured_ ? params_.measured_latency_allowance : 0.0));
   }
-  /// `velocity` (team frame, m/s) of `robot` limited by the contact guard against every other robot: where
-  /// each is now and, unless `at_ball` (the robot dribbling or armed to kick), where it will be when the
-  /// command acts.
-  Vec2 guarded(const wm::RobotState& robot, Vec2 velocity, const Zones& zones, bool at_ball) const;
-  /// `velocity` limited so that `robot` can still stop before each defense zone the intent keeps it out of
-  /// (and the ball's circle, with guard_ball_circle) after guard_latency at guard_deceleration, and never
-  /// goes deeper into one it is inside: the zones are a hard limit whatever the plan (a robot following a
-  /// moving target, or a path that overshoots).
-  Vec2 zone_guarded(const wm::RobotState& robot, Vec2 velocity, const MotionIntent& intent,
-                    const Zones& zones) const;
+  /// A limit on the command: velocity . direction <= max (direction unit, team frame; max >= 0 m/s).
+  struct SpeedBound {
+    Vec2 direction;
+    double max = 0;
+  };
+  /// The contact guard's bounds on `robot`'s velocity, one per other robot where it is now and, unless
+  /// `at_ball` (the robot dribbling or armed to kick) or `for_ball` (contesting the ball) with the other by
+  /// the ball too, where it will be when the command acts.
+  void contact_bounds(const wm::RobotState& robot, const Zones& zones, bool at_ball, bool for_ball,
+                      std::vector<SpeedBound>& bounds) const;
+  /// Bounds so that `robot` can still stop before each defense zone the intent keeps it out of (and the
+  /// ball's circle, with guard_ball_circle) after guard_latency at guard_deceleration, and never goes deeper
+  /// into one it is inside: the zones are a hard limit whatever the plan (a robot following a moving target,
+  /// or a path that overshoots).
+  void zone_bounds(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones,
+                   std::vector<SpeedBound>& bounds) const;
+  /// `velocity` brought within every bound: projected onto each violated one in turn, a few rounds, then
+  /// scaled towards rest (which meets them all) if one is still violated.
+  static Vec2 within(Vec2 velocity, std::span<const SpeedBound> bounds);
   /// No other robot (where it is now, with its clearance) touches the straight way from `from` to `to`.
   static bool direct_way_clear(const Vec2& from, const Vec2& to, const Obstacles& obstacles);
   /// `target` moved out of any robot standing on it (our robots: where their planned paths end).

@@ -623,12 +623,11 @@ std::optional<Vec2> BuiltinReferee::placement_needed_for(Command restart, const 
   if (is_kickoff(restart)) return unless_near(Vec2::Zero());
   if (is_penalty(restart)) return unless_near(penalty_mark_against(opponent(*team_of(restart))));
   if (restart != Command::kForceStart) return std::nullopt;
-  // FORCE_START: anywhere inside the field lines. A ball beyond them (in a goal, in the boundary, beyond the
-  // walls) goes to the nearest legal free-kick spot.
-  if (std::abs(ball->x()) <= 0.5 * field_.field_length && std::abs(ball->y()) <= 0.5 * field_.field_width) {
-    return std::nullopt;
-  }
-  return legal_free_kick_spot(*ball);
+  // FORCE_START (after no progress, a goal with force_start_after_goal, a failed placement): as the Game
+  // Controller does with the location of the event, a ball beyond the lines (in a goal, in the boundary),
+  // too near one, or before a defense area (within 1 m of it) goes to the nearest legal free-kick spot
+  // first. Left there, a ball stuck by a defense area, where neither team can play it, stalls again.
+  return unless_near(legal_free_kick_spot(*ball));
 }
 
 BuiltinReferee::Transition BuiltinReferee::placement_before(Command restart, const Vec2& target,

@@ -931,6 +931,38 @@ TEST(BuiltinReferee, NoProgressWithTheBallBeyondTheLinesPlacesItBeforeTheForceSt
   }
 }
 
+TEST(BuiltinReferee, NoProgressBeforeADefenseAreaPlacesTheBallOneMetreFromItBeforeTheForceStart) {
+  // Stuck where neither team can play it (by the area's edge, its own robots kept out of it): placed out of
+  // the area's reach first, along x or along y, whichever is nearer, as the Game Controller does. A ball
+  // anywhere else stays where it rests. Blue touched it last, from outside both areas.
+  struct Case {
+    Vec2 ball, target, toucher;
+  };
+  for (const Case& c : {Case{{3.5, 0.09}, {2.5, 0.09}, {3.39, 0.09}},      // before blue's area
+                        Case{{3.93, 1.05}, {3.93, 2.0}, {3.93, 1.16}},     // beside it
+                        Case{{-3.45, -0.4}, {-2.5, -0.4}, {-3.34, -0.4}},  // before yellow's
+                        Case{{2.4, 0.5}, {2.4, 0.5}, {2.29, 0.5}},         // 1.1 m out: stays
+                        Case{{3.8, 2.1}, {3.8, 2.1}, {3.8, 2.21}}}) {      // 1.1 m aside: stays
+    BuiltinReferee referee = running_referee(builtin_profile("strict_ai"));
+    referee.step(ball_at(c.ball, {blue(3, c.toucher)}), at(0.5));
+    for (double t = 1; t <= 10.6; t += 0.1) referee.step(ball_at(c.ball), at(t));
+    ASSERT_EQ(referee.state().command, Command::kStop) << "no progress at " << c.ball.transpose();
+    EXPECT_EQ(referee.state().next_command, Command::kForceStart);
+    referee.step(ball_at(c.ball), at(12.7));
+    if (c.target == c.ball) {
+      EXPECT_EQ(referee.state().command, Command::kForceStart) << "at " << c.ball.transpose();
+      continue;
+    }
+    EXPECT_EQ(referee.state().command, Command::kBallPlacementYellow) << "at " << c.ball.transpose();
+    expect_near(referee.state().designated_position, c.target);
+    EXPECT_EQ(referee.state().next_command, Command::kForceStart);
+    referee.step(ball_at(c.target), at(13));
+    referee.step(ball_at(c.target), at(13.5));
+    referee.step(ball_at(c.target), at(15.6));
+    EXPECT_EQ(referee.state().command, Command::kForceStart);
+  }
+}
+
 TEST(BuiltinReferee, WithoutBallPlacementTheKickoffWaitsUntilTheBallIsOnTheCentreMarkByHand) {
   RefereeProfile profile = builtin_profile("simulation");
   profile.game.ball_placement = false;
