@@ -161,10 +161,11 @@ void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& 
   }
 }
 
-/// m short of the ball's contact point where a kicker not yet armed stops: inside the arming window, so it
-/// arms as soon as it is in line, and its overshoot (2-3 cm with a lagging robot) never pushes the ball
-/// unarmed. A push at a restart sets the ball in play, and the kick after it is a double touch.
-constexpr double kUnarmedGap = 0.04;
+/// m short of the ball's contact point where a restart's kicker not yet armed stops: inside the arming
+/// window, so it arms as soon as it is in line, and its overshoot (2-3 cm with a lagging robot) never pushes
+/// the ball unarmed. A push sets the ball in play, and the kick after it is a double touch. In open play a
+/// push costs nothing, and stopping short would delay every kick.
+constexpr double kRestartUnarmedGap = 0.04;
 /// Kick along `u` at `speed` once behind the ball facing that way, else get there.
 MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const Vec2& u, double speed, Skill skill) {
   MotionIntent intent = base(s, skill);
@@ -188,7 +189,12 @@ MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const V
       intent.target = s.ball + u * std::max(through, contact_through);
     }
   } else {
-    approach_ball(s, robot, u, intent, kUnarmedGap);
+    const bool restart_kicker = s.restart_kicker && *s.restart_kicker == robot.id;
+    if (restart_kicker) {
+      approach_ball(s, robot, u, intent, kRestartUnarmedGap);
+    } else {
+      approach_ball(s, robot, u, intent);
+    }
   }
   return intent;
 }
