@@ -114,6 +114,11 @@ void follow_ball(const Situation& s, const Vec2& u, MotionIntent& intent) {
   }
 }
 
+/// Whether `robot` is our restart's kicker (Situation::restart_kicker).
+bool is_restart_kicker(const Situation& s, const wm::RobotState& robot) {
+  return s.restart_kicker && *s.restart_kicker == robot.id;
+}
+
 /// The last part of the approach along `u` to a ball: closing at kTouchClosingSpeed (kAreaEdgeClosingSpeed
 /// on a defense area's edge) on top of the speed the ball rolls away along `u` at, moving with a ball that
 /// rolls away (a cap of its own would leave the robot trailing a rolling ball, never touching it). Not the
@@ -121,8 +126,7 @@ void follow_ball(const Situation& s, const Vec2& u, MotionIntent& intent) {
 /// kick) it lets go, slower than the ball.
 void close_on_ball(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent& intent) {
   const double away = s.ball_known ? std::max(0.0, s.ball_velocity.dot(u)) : 0.0;
-  const bool restart_kicker = s.restart_kicker && *s.restart_kicker == robot.id;
-  if (restart_kicker) {
+  if (is_restart_kicker(s, robot)) {
     intent.max_speed = std::min(intent.max_speed, away > kFollowAwaySpeed ? away / 2 : kTouchClosingSpeed);
     return;
   }
@@ -144,10 +148,12 @@ void kick_through(const Situation& s, const wm::RobotState& robot, const Vec2& u
 /// m beyond the dribbler distance behind the ball where approach_ball stages a robot not yet behind it.
 constexpr double kStagingBehind = 0.2;
 
+/// m short of the ball's contact point where an approach ends before the kicker is armed.
+constexpr double kApproachGap = 0.01;
 /// Get behind the ball on the line along `u`: align when already close behind it, else go around it.
 /// Aligned, the target leaves `gap` (m) between dribbler and ball: negative goes into the ball, to take it.
 void approach_ball(const Situation& s, const wm::RobotState& robot, const Vec2& u, MotionIntent& intent,
-                   double gap = 0.01) {
+                   double gap = kApproachGap) {
   const Vec2 rel = robot.position - s.ball;
   const double dd = dribbler_distance(s);
   intent.orientation = geom::angle_of(u).radians();
@@ -189,12 +195,7 @@ MotionIntent kick_along(const Situation& s, const wm::RobotState& robot, const V
       intent.target = s.ball + u * std::max(through, contact_through);
     }
   } else {
-    const bool restart_kicker = s.restart_kicker && *s.restart_kicker == robot.id;
-    if (restart_kicker) {
-      approach_ball(s, robot, u, intent, kRestartUnarmedGap);
-    } else {
-      approach_ball(s, robot, u, intent);
-    }
+    approach_ball(s, robot, u, intent, is_restart_kicker(s, robot) ? kRestartUnarmedGap : kApproachGap);
   }
   return intent;
 }
