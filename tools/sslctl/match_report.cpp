@@ -148,6 +148,7 @@ void MatchReportBuilder::on_ball(const geom::Vec2& ball, time::Timestamp t) {
     in_play_vision_ += std::min(time::to_seconds(t - *last_ball_time_), kBallUnseenAfter);
   }
   last_ball_time_ = t;
+  last_ball_ = ball;
   ball_in_play_ = previous_ && activity_of(previous_->command) == Activity::kInPlay && inside_field(ball);
   ++report_.ball_samples;
   if (!report_.longest_stall) report_.longest_stall = MatchReport::Stall{};
@@ -186,7 +187,10 @@ void MatchReportBuilder::on_robots(std::span<const PlayAccount::Robot> robots, t
       const PlayAccount::Robot& b = robots[j];
       if (a.team == b.team && a.id == b.id) continue;  // one robot detected twice
       const double distance = (a.position - b.position).norm();
-      contact = contact || distance < kContactDistance;
+      if (distance < kContactDistance) {
+        contact = true;
+        on_contact(a, b, distance, t);
+      }
       if (!report_.closest_robots || distance < report_.closest_robots->distance) {
         report_.closest_robots = MatchReport::ClosestRobots{
             .distance = distance, .at = since_start(t), .first = {a.team, a.id}, .second = {b.team, b.id}};
@@ -194,6 +198,40 @@ void MatchReportBuilder::on_robots(std::span<const PlayAccount::Robot> robots, t
     }
   }
   if (contact) ++report_.contact_frames;
+}
+
+void MatchReportBuilder::on_contact(const PlayAccount::Robot& a, const PlayAccount::Robot& b, double distance,
+                                    time::Timestamp t) {
+  auto key_of = [](const PlayAccount::Robot& r) { return std::pair{static_cast<int>(r.team), r.id}; };
+  const bool a_first = key_of(a) < key_of(b);
+  const PlayAccount::Robot& first = a_first ? a : b;
+  const PlayAccount::Robot& second = a_first ? b : a;
+  const auto key = std::pair{key_of(first), key_of(second)};
+  std::optional<double> ball_distance;
+  if (last_ball_) {
+    ball_distance = std::min((*last_ball_ - a.position).norm(), (*last_ball_ - b.position).norm());
+  }
+  const auto open = open_contacts_.find(key);
+  if (open != open_contacts_.end() && time::to_seconds(t - open->second.second) <= kContactEpisodeGap) {
+    MatchReport::ContactEpisode& episode = report_.contacts[open->second.first];
+    episode.seconds = since_start(t) - episode.from;
+    ++episode.frames;
+    if (distance < episode.closest) {
+      episode.closest = distance;
+      episode.ball_distance = ball_distance;
+    }
+    open->second.second = t;
+    return;
+  }
+  report_.contacts.push_back(MatchReport::ContactEpisode{
+      .first = {first.team, first.id},
+      .second = {second.team, second.id},
+      .from = since_start(t),
+      .frames = 1,
+      .closest = distance,
+      .command = previous_ ? std::optional(previous_->command) : std::nullopt,
+      .ball_distance = ball_distance});
+  open_contacts_[key] = {report_.contacts.size() - 1, t};
 }
 
 MatchReport MatchReportBuilder::report() const {
@@ -266,6 +304,22 @@ std::string to_text(const MatchReport& r) {
                   std::string(to_string(c.second.team)).c_str(), c.second.id, MatchReportBuilder::kContactDistance,
                   static_cast<unsigned long long>(r.contact_frames));
     out << line;
+  }
+  if (!r.contacts.empty()) {
+    out << "contacts: " << r.contacts.size() << " episodes\n";
+    for (const MatchReport::ContactEpisode& c : r.contacts) {
+      std::snprintf(line, sizeof line, "  %s for %.2f s (%llu frames): %s %u, %s %u, closest %.3f m, %s", 
+                    clock_text(c.from).c_str(), c.seconds, static_cast<unsigned long long>(c.frames),
+                    std::string(to_string(c.first.team)).c_str(), c.first.id,
+                    std::string(to_string(c.second.team)).c_str(), c.second.id, c.closest,
+                    c.command ? std::string(referee::to_string(*c.command)).c_str() : "before any command");
+      out << line;
+      if (c.ball_distance) {
+        std::snprintf(line, sizeof line, ", ball %.2f m from the nearer", *c.ball_distance);
+        out << line;
+      }
+      out << '\n';
+    }
   }
   out << "commands:";
   for (const auto& [command, count] : r.commands) out << ' ' << referee::to_string(command) << ' ' << count << ',';
@@ -355,6 +409,19 @@ std::string to_json(const MatchReport& r) {
                                {{"team", std::string(to_string(c.second.team))}, {"id", c.second.id}}}}};
   }
   out["contact_frames"] = r.contact_frames;
+  out["contacts"] = json::array();
+  for (const MatchReport::ContactEpisode& c : r.contacts) {
+    out["contacts"].push_back(
+        {{"robots",
+          {{{"team", std::string(to_string(c.first.team))}, {"id", c.first.id}},
+           {{"team", std::string(to_string(c.second.team))}, {"id", c.second.id}}}},
+         {"from_s", c.from},
+         {"seconds", c.seconds},
+         {"frames", c.frames},
+         {"closest_m", c.closest},
+         {"command", c.command ? json(std::string(referee::to_string(*c.command))) : json(nullptr)},
+         {"ball_distance_m", c.ball_distance ? json(*c.ball_distance) : json(nullptr)}});
+  }
   if (r.longest_stall) {
     out["longest_stall"] = {{"seconds", r.longest_stall->seconds},
                             {"from_s", r.longest_stall->from},

@@ -22,7 +22,10 @@
 //  * robots (on_frame, on_robots), whatever the referee says: the closest two robots (centres, any teams) and
 //    the contact frames, frames with two centres closer than kContactDistance. Counted per frame as
 //    delivered: vision sends one frame per camera, so an instant seen by two cameras counts twice, and two
-//    robots in contact on the seam between two cameras count once per camera that sees both.
+//    robots in contact on the seam between two cameras count once per camera that sees both. Each pair's
+//    contacts are also told as episodes: one lasts while frames with the pair in contact come at most
+//    kContactEpisodeGap apart; it keeps the closest distance, the referee command at its start and the ball's
+//    distance from the nearer robot at the closest frame (nullopt without a ball observation).
 //  * per team: placements (BALL_PLACEMENT_<team> commands issued) and balls out (BALL_LEFT_FIELD_TOUCH_LINE
 //    and _GOAL_LINE events by the team, which kicked it out).
 //
@@ -89,6 +92,16 @@ struct MatchReport {
     RobotId first;
     RobotId second;
   };
+  struct ContactEpisode {
+    RobotId first;
+    RobotId second;
+    double from = 0;     // s since the first referee sample (0 before it)
+    double seconds = 0;  // from the first to the last frame in contact
+    std::uint64_t frames = 0;
+    double closest = 0;  // m, centre to centre
+    std::optional<referee::Command> command;  // the referee's command at the start; nullopt before one
+    std::optional<double> ball_distance;      // m from the ball to the nearer robot at the closest frame
+  };
   struct StageChange {
     double at = 0;
     referee::Stage stage = referee::Stage::kNormalFirstHalfPre;
@@ -112,6 +125,7 @@ struct MatchReport {
   std::optional<double> in_play_vision;         // s, the ball seen inside the field; nullopt: no field size
   std::optional<ClosestRobots> closest_robots;  // nullopt before a frame with two robots
   std::uint64_t contact_frames = 0;             // frames with two robot centres closer than kContactDistance
+  std::vector<ContactEpisode> contacts;         // in the order they began
   std::map<referee::Command, std::uint32_t> commands;  // how often each command was issued
   std::vector<EventCount> events;                       // by type, then team
   std::optional<Stall> longest_stall;                   // nullopt without ball samples
@@ -128,6 +142,8 @@ class MatchReportBuilder {
   static constexpr double kBallUnseenAfter = 0.2;  // s between ball observations: longer, the ball was not seen
   /// m between two robot centres: closer is a contact (two robots of the rules' largest radius, plus 1 cm).
   static constexpr double kContactDistance = 2 * FieldGeometry{}.max_robot_radius + 0.01;
+  /// s between two frames with a pair in contact: longer apart, the second begins a new episode.
+  static constexpr double kContactEpisodeGap = 0.25;
 
   /// One referee sample at `t` (samples before the previous one are ignored).
   void on_referee(const referee::RefereeState& state, time::Timestamp t);
@@ -155,6 +171,8 @@ class MatchReportBuilder {
   /// The ball not yet wholly over a field line; false without the field's size.
   bool inside_field(const geom::Vec2& ball) const;
   void close_stall(time::Timestamp t);
+  /// Two robots `distance` apart (under kContactDistance) in the frame at `t`: extends or begins their episode.
+  void on_contact(const PlayAccount::Robot& a, const PlayAccount::Robot& b, double distance, time::Timestamp t);
 
   MatchReport report_;
   std::optional<time::Timestamp> first_;
@@ -169,6 +187,12 @@ class MatchReportBuilder {
   bool ball_in_play_ = false;  // at the last ball observation: in play, and the ball inside the field
   double in_play_vision_ = 0;  // s
   std::optional<time::Timestamp> last_robots_time_;
+  std::optional<geom::Vec2> last_ball_;
+  // Per pair (the two robots ordered by team, then id): the index of its latest episode in report_.contacts
+  // and the time of its latest frame in contact.
+  std::map<std::pair<std::pair<int, std::uint32_t>, std::pair<int, std::uint32_t>>,
+           std::pair<std::size_t, time::Timestamp>>
+      open_contacts_;
   std::optional<FieldGeometry> field_;
   PlayAccount play_;
 };

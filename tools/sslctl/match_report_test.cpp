@@ -219,6 +219,40 @@ TEST(MatchReport, TwoRobotCentresCloserThanTwoRadiiAndACentimetreMakeAContactFra
   EXPECT_EQ(json["closest_robots"]["robots"][1]["id"], 5);
 }
 
+TEST(MatchReport, APairsContactFramesUpToAQuarterSecondApartMakeOneEpisodeWithItsClosestDistanceAndCommand) {
+  MatchReportBuilder builder;
+  builder.on_referee(small_match().samples[0].second, at(0));
+  builder.on_frame(Vec2(0.3, 0), two_robots_apart(0.185), at(1));
+  builder.on_robots(two_robots_apart(0.170), at(1.25));  // the boundary: still the same episode
+  builder.on_robots(two_robots_apart(0.180), at(1.3));
+  builder.on_robots(two_robots_apart(0.180), at(1.56));  // 0.26 s later: a new episode
+  builder.on_robots(two_robots_apart(0.3), at(2));
+  const MatchReport report = builder.report();
+  EXPECT_EQ(report.contact_frames, 4u);
+  ASSERT_EQ(report.contacts.size(), 2u);
+  const MatchReport::ContactEpisode& first = report.contacts[0];
+  EXPECT_EQ(first.first.team, TeamColor::kBlue) << "ordered by team, then id";
+  EXPECT_EQ(first.first.id, 5u);
+  EXPECT_EQ(first.second.team, TeamColor::kYellow);
+  EXPECT_EQ(first.second.id, 3u);
+  EXPECT_DOUBLE_EQ(first.from, 1);
+  EXPECT_NEAR(first.seconds, 0.3, 1e-9);
+  EXPECT_EQ(first.frames, 3u);
+  EXPECT_DOUBLE_EQ(first.closest, 0.170);
+  ASSERT_TRUE(first.command);
+  EXPECT_EQ(*first.command, small_match().samples[0].second.command);
+  ASSERT_TRUE(first.ball_distance);
+  EXPECT_NEAR(*first.ball_distance, 0.13, 1e-9) << "ball at 0.3 m, the robots at 0 and 0.17 m";
+  EXPECT_EQ(report.contacts[1].frames, 1u);
+  EXPECT_DOUBLE_EQ(report.contacts[1].from, 1.56);
+  EXPECT_NE(to_text(report).find("contacts: 2 episodes"), std::string::npos) << to_text(report);
+  const auto json = nlohmann::json::parse(to_json(report));
+  ASSERT_EQ(json["contacts"].size(), 2u);
+  EXPECT_DOUBLE_EQ(json["contacts"][0]["closest_m"].get<double>(), 0.170);
+  EXPECT_EQ(json["contacts"][0]["frames"], 3);
+  EXPECT_EQ(json["contacts"][1]["robots"][0]["team"], "blue");
+}
+
 TEST(MatchReport, ARobotDetectedTwiceInOneFrameIsNoContact) {
   MatchReportBuilder builder;
   const Robot robot{.team = TeamColor::kBlue, .id = 2, .position = Vec2(1, 1)};
