@@ -15,6 +15,11 @@ Fields<MotionLimits> limit_fields() {
       field("max_acceleration", &MotionLimits::max_acceleration).unit("m/s^2").range(0.1, 50),
       field("max_angular_speed", &MotionLimits::max_angular_speed).unit("rad/s").range(0.1, 100),
       field("max_angular_acceleration", &MotionLimits::max_angular_acceleration).unit("rad/s^2").range(0.1, 1000),
+      config::optional_field("max_turning_acceleration", &MotionLimits::max_turning_acceleration, 0.0)
+          .unit("m/s^2")
+          .range(0, 1000)
+          .doc("0: no limit; else a turn of the body while moving at v is kept under this / v (robots whose "
+               "wheels hold the velocity in their own frame, as grSim's)"),
   };
 }
 

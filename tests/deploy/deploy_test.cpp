@@ -409,6 +409,18 @@ TEST(Install, TheInstalledServicesReadTheInstalledConfigsAndSites) {
     EXPECT_THAT(printed, HasSubstr("port: 10099")) << "not the installed file:\n" << printed;
     EXPECT_THAT(printed, HasSubstr("vision_port: " + port)) << site;
   }
+  // The grsim site's planner layer: grSim's robots' acceleration and the turn limit their wheels need.
+  const fs::path planner = prefix.path / "opt/ssl-stack/bin/planner";
+  for (const auto& [site, limits] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"sim", {"max_acceleration: 3", "max_turning_acceleration: 0"}},
+           {"grsim", {"max_acceleration: 2.3", "max_turning_acceleration: 1.5"}}}) {
+    auto child = ChildProcess::start(planner, {"--print-config", "--site", site});
+    ASSERT_TRUE(child) << child.error().message;
+    std::string printed;
+    while (auto line = child->read_line(10s)) printed += *line + "\n";
+    EXPECT_EQ(child->wait(10s), 0) << child->drain_stderr();
+    for (const std::string& limit : limits) EXPECT_THAT(printed, HasSubstr(limit)) << site;
+  }
   // An unknown site is a clear error naming the installed ones.
   auto wrong = ChildProcess::start(gateway, {"--print-config", "--site", "feild"});
   ASSERT_TRUE(wrong);

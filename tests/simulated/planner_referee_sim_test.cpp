@@ -1513,6 +1513,25 @@ TEST_P(PlannerSimReferee, TheKeeperClearsABallLyingOnOurGoalLineBesideAPost) {
   EXPECT_EQ(goal_of(m), 0);
 }
 
+TEST_P(PlannerSimReferee, TheKeeperClearsABallLyingStillOnOurDefenseAreasEdgeBesideAnOpponent) {
+  // The ball at rest 1.5 mm outside the side of our defense area, an opponent standing 0.45 m from it (seen
+  // on grSim: nobody may fetch it from inside our area, the opponent cannot get behind it either, and the
+  // keeper left it to the nearer opponent; no autoRef called no progress, and it lay there for 174 s).
+  // Normal play, our keeper alone: within 8 s the ball is 0.5 m from where it lay, and not in our goal.
+  LockstepMatch m(param(), seed());
+  only(m, 0, {1});
+  const double hl = m.half_length();
+  const Vec2 ball(-hl + m.field().penalty_area_depth - 0.6, -(m.field().penalty_area_width / 2 + 0.0015));
+  m.place_ball(ball);
+  m.place(true, 0, {-hl + 0.2, 0.0}, 0.0);
+  m.place(false, 1, ball + Vec2(0.2, -0.4), M_PI);
+  m.planner(false).override_skill(1, SkillOverride{StopParams{}});
+  m.script({{kWarmUp, RefereeCommand::kForceStart}});
+  EXPECT_TRUE(run_until(m, kWarmUp + 8.0, [&] { return (m.truth().ball - ball).norm() > 0.5; }))
+      << "ball at " << m.truth().ball.transpose();
+  EXPECT_EQ(goal_of(m), 0);
+}
+
 TEST_P(PlannerSimReferee, StopBrakesARunningRobotToAStandstill) {
   // Running at full speed, stop: standing (< 0.05 m/s) within what braking at the simulator's 4 m/s^2
   // takes, plus 0.2 s.

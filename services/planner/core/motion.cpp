@@ -237,7 +237,9 @@ RobotCommand SimpleMotionPlanner::plan(const wm::RobotState& robot, const Motion
       (geom::Angle::from_radians(intent.orientation) - geom::Angle::from_radians(robot.orientation))
           .radians();
   double angular =
-      clamp_abs(kHeadingGain * heading_error, std::min(limits_.max_angular_speed, intent.max_angular_speed));
+      clamp_abs(kHeadingGain * heading_error,
+                std::min(limits_.angular_speed_at(std::max(velocity.norm(), robot.velocity.norm())),
+                         intent.max_angular_speed));
   angular = memory.angular + clamp_abs(angular - memory.angular, limits_.max_angular_acceleration * dt);
   memory = {velocity, angular};
 

@@ -102,6 +102,13 @@ class MotionPlanner {
   virtual RobotCommand plan(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones,
                             double dt) = 0;
 
+  /// `velocity` (team frame) for `robot` kept off the other robots as plan() keeps its own: for a velocity
+  /// the rule layer changed after plan() (the escape from the ball's circle). As given without a guard.
+  virtual Vec2 keep_off_robots(const wm::RobotState& /*robot*/, const MotionIntent& /*intent*/,
+                               const Zones& /*zones*/, const Vec2& velocity) const {
+    return velocity;
+  }
+
   /// What was finally sent after the rule layer (team frame), so that acceleration limits start from it.
   virtual void sent(std::uint32_t /*id*/, const Vec2& /*velocity*/, double /*angular*/) {}
 

@@ -90,6 +90,20 @@ struct MotionLimits {
   double max_acceleration = 3.0;       // m/s^2
   double max_angular_speed = 6.0;      // rad/s
   double max_angular_acceleration = 30;  // rad/s^2
+  // m/s^2, 0 for no limit: a robot whose wheels hold the velocity in its own frame (grSim; real robots
+  // without a gyro-stabilised controller) must turn that velocity at v * w when it turns its body at w rad/s
+  // while moving at v m/s; with a limit the turn is kept slow enough that v * w stays under it. On grSim
+  // robots turning faster lost their way: the velocity reached missed the command by 0.2 m/s where v * w
+  // stayed under 1 m/s^2, 0.5 m/s at 2-3 and over 1 m/s above 5 (11 v 11, 4 minutes, both teams), and one
+  // ran on into another at 1.7 m/s while commanded to stand. The site says it (deploy/sites/grsim).
+  double max_turning_acceleration = 0;
+
+  /// rad/s: the fastest turn for a robot moving at `speed` m/s (max_angular_speed at rest or without a limit).
+  double angular_speed_at(double speed) const {
+    return max_turning_acceleration > 0 && speed * max_angular_speed > max_turning_acceleration
+               ? max_turning_acceleration / speed
+               : max_angular_speed;
+  }
 
   friend bool operator==(const MotionLimits&, const MotionLimits&) = default;
 };

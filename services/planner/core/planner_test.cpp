@@ -204,6 +204,23 @@ TEST_P(PlannerRefereeTest, StopLimitsSpeedAndClearsTheBall) {
   }
 }
 
+TEST_P(PlannerRefereeTest, InStopARobotEscapingTheBallsCircleDoesNotDriveIntoATeammateOnItsEdge) {
+  // Robot 5 inside the circle, robot 6 just outside it straight out from the ball, 2 radii + 3 cm apart:
+  // the rule layer's escape (straight out) would drive 5 into 6; the contact guard holds it.
+  script_.set_ball({1.0, 0.5});
+  script_.robot(5)->position = {1.45, 0.5};
+  script_.robot(6)->position = {1.66, 0.5};
+  script_.command(RefereeCommand::kStop);
+  for (int i = 0; i < 20; ++i) {
+    const PlannerOutput out = tick();
+    for (const RobotCommand& c : out.commands) {
+      if (c.id != 5) continue;
+      const Vec2 velocity = testing::team_velocity(c, script_.robot(5)->orientation);
+      EXPECT_LE(velocity.x(), 1e-9) << "towards robot 6 at tick " << i;
+    }
+  }
+}
+
 TEST_P(PlannerRefereeTest, StopTargetsKeepClearOfTheirDefenseArea) {
   const wm::Field f = field();
   script_.set_ball({f.half_length() - f.size().penalty_area_depth - 0.3, 0.4});  // ball just outside it

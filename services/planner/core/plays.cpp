@@ -761,13 +761,17 @@ void play_their_free_kick(const Situation& s, PlayMemory& memory, TeamIntents& o
 constexpr double kKeeperClearMargin = 0.3;    // m around our defense area
 constexpr double kKeeperClearMaxSpeed = 0.8;  // m/s: a faster ball is guarded, not chased
 constexpr double kKeeperClearLead = 0.3;      // m the keeper must be nearer a ball outside the area
+// s a ball may lie at rest there before the keeper clears it whoever is nearer: an opponent beside a ball on
+// our area's edge may not get behind it either (on grSim, with no autoRef to call no progress, such a ball
+// lay for 174 s).
+constexpr double kKeeperClearAfterRest = 2.0;
 
 bool keeper_should_clear(const Situation& s) {
   if (!s.keeper || !s.ball_known || s.ball_velocity.norm() > kKeeperClearMaxSpeed ||
       !s.field.in_our_defense_area(s.ball, kKeeperClearMargin) || !s.field.ball_in_field(s.ball)) {
     return false;
   }
-  if (s.field.in_our_defense_area(s.ball, 0.0)) return true;
+  if (s.field.in_our_defense_area(s.ball, 0.0) || s.ball_at_rest_for >= kKeeperClearAfterRest) return true;
   const wm::RobotState* keeper = find_robot(s, *s.keeper);
   if (!keeper) return false;
   const double keeper_distance = (keeper->position - s.ball).norm();

@@ -45,7 +45,13 @@ struct Situation {
   std::optional<std::uint32_t> possessing_robot;      // of the possessing team
   double now = 0;                                      // s, the tick's time (only differences matter)
   std::optional<std::uint32_t> restart_kicker;         // PlayMemory::restart_kicker: not to touch the ball
+  double ball_at_rest_for = 0;  // s the ball has lain (below kBallAtRestSpeed, within kBallAtRestDrift)
 };
+
+/// The ball lies at rest below this speed (m/s) and while it stays within this distance (m) of where it
+/// came to rest (Situation::ball_at_rest_for).
+constexpr double kBallAtRestSpeed = 0.1;
+constexpr double kBallAtRestDrift = 0.05;
 
 /// What the team remembers between ticks for stable decisions.
 struct PlayMemory {
@@ -68,6 +74,8 @@ struct PlayMemory {
   std::optional<std::uint32_t> restart_kicker;
   // Robots leaving the field for a card (substitution.h), ascending; sticky from tick to tick.
   std::vector<std::uint32_t> leaving;
+  // Where and since when (Situation::now) the ball lies at rest; nullopt while it moves or is unknown.
+  std::optional<std::pair<Vec2, double>> ball_rest;
 };
 
 /// The intents of the whole team for one tick, indexed by robot id.

@@ -25,6 +25,12 @@ RuleLimits rule_limits(const wm::GameState& game, const PlannerConfig& config, b
   return limits;
 }
 
+bool escapes_ball(const RuleLimits& limits, const wm::RobotState& robot, const std::optional<Vec2>& ball) {
+  const bool exempt = limits.exempt && *limits.exempt == robot.id;
+  return !exempt && limits.keep_away_from_ball > 0 && ball &&
+         (robot.position - *ball).norm() < limits.keep_away_from_ball;
+}
+
 RobotCommand enforce(const RuleLimits& limits, const wm::RobotState& robot, RobotCommand command,
                      const std::optional<Vec2>& ball) {
   if (limits.halt) {
@@ -40,15 +46,13 @@ RobotCommand enforce(const RuleLimits& limits, const wm::RobotState& robot, Robo
   Vec2 velocity = to_team(command, robot.orientation);
   const bool exempt = limits.exempt && *limits.exempt == robot.id;
   if (limits.keep_away_from_ball > 0 && !exempt) command.dribbler_rpm = 0;
-  if (limits.keep_away_from_ball > 0 && ball && !exempt) {
+  if (escapes_ball(limits, robot, ball)) {
     const Vec2 away = robot.position - *ball;
     const double distance = away.norm();
-    if (distance < limits.keep_away_from_ball) {
-      const Vec2 out = distance > 1e-9 ? Vec2(away / distance) : Vec2(-1, 0);
-      const double outward = velocity.dot(out);
-      const Vec2 tangential = velocity - outward * out;
-      velocity = tangential + std::max(outward, limits.min_escape_speed) * out;
-    }
+    const Vec2 out = distance > 1e-9 ? Vec2(away / distance) : Vec2(-1, 0);
+    const double outward = velocity.dot(out);
+    const Vec2 tangential = velocity - outward * out;
+    velocity = tangential + std::max(outward, limits.min_escape_speed) * out;
   }
   const double speed = velocity.norm();
   if (speed > limits.max_speed) velocity *= limits.max_speed / speed;

@@ -27,6 +27,10 @@ struct RuleLimits {
 RuleLimits rule_limits(const wm::GameState& game, const PlannerConfig& config, bool we_place_ball,
                        std::optional<std::uint32_t> placer);
 
+/// Whether `limits` make `robot` (team frame) escape the ball's circle (team frame): inside the keep-away
+/// distance of a restart or STOP, and not the robot exempt from it.
+bool escapes_ball(const RuleLimits& limits, const wm::RobotState& robot, const std::optional<Vec2>& ball);
+
 /// `command` (local frame) made to obey `limits` for `robot` (team frame), given the ball (team frame).
 RobotCommand enforce(const RuleLimits& limits, const wm::RobotState& robot, RobotCommand command,
                      const std::optional<Vec2>& ball);

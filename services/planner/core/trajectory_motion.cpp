@@ -242,6 +242,14 @@ void TrajectoryMotionPlanner::zone_bounds(const wm::RobotState& robot, const Mot
   }
 }
 
+Vec2 TrajectoryMotionPlanner::keep_off_robots(const wm::RobotState& robot, const MotionIntent& intent,
+                                              const Zones& zones, const Vec2& velocity) const {
+  std::vector<SpeedBound> bounds;
+  const bool at_ball = intent.dribble || intent.kick != KickType::kNone;
+  contact_bounds(robot, zones, at_ball, at_ball || intent.contests_ball, bounds);
+  return within(velocity, bounds);
+}
+
 Vec2 TrajectoryMotionPlanner::within(Vec2 velocity, std::span<const SpeedBound> bounds) {
   // Each bound is a half-plane of velocities with the origin in it (max >= 0). Taking the velocity onto one
   // bound after the other can break one met before (a robot between two others: braking towards one turned
@@ -357,10 +365,7 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   std::vector<SpeedBound> bounds;
   zone_bounds(robot, intent, zones, bounds);
   velocity = within(velocity, bounds);
-  bounds.clear();
-  const bool at_ball = intent.dribble || intent.kick != KickType::kNone;
-  contact_bounds(robot, zones, at_ball, at_ball || intent.contests_ball, bounds);
-  velocity = within(velocity, bounds);
+  velocity = keep_off_robots(robot, intent, zones, velocity);
 
   // With a measured delay the heading is planned from where the last command turns it by the time this
   // one acts: robots that answer late overshoot their heading otherwise (match_series --conditions realistic,
@@ -369,9 +374,17 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   // that commands there do not take, and the heading's lead lost a Keep3v3 variant there.
   const double heading_then =
       robot.orientation + (latency_measured_ ? memory.angular * params_.actuation_latency : 0.0);
+  // Where the site limits it (MotionLimits::max_turning_acceleration), a running body turns no faster than
+  // its wheels can hold the velocity through the turn, unless it would then arrive facing wrong: then as
+  // fast as facing right on arrival needs (a path's last part is slow, where the limit is loose). Limited
+  // alone, robots arrived unturned: base scored 1.30 a match to ball_chaser's 1.45 (6 v 6, seeds 1-20,
+  // every robot limited), 1.55 : 0.90 with the arrival, 1.70 : 1.20 unlimited.
+  const double turn_left = std::abs(std::remainder(intent.orientation - heading_then, 2 * std::numbers::pi));
+  double turn_speed = limits_.angular_speed_at(std::max(velocity.norm(), robot.velocity.norm()));
+  if (path.duration() > 0) turn_speed = std::max(turn_speed, turn_left / path.duration());
   const Trajectory1D turn =
       plan_rotation(heading_then, memory.angular, intent.orientation,
-                    {.max_speed = std::min(limits_.max_angular_speed, intent.max_angular_speed),
+                    {.max_speed = std::min({turn_speed, limits_.max_angular_speed, intent.max_angular_speed}),
                      .max_acceleration = limits_.max_angular_acceleration});
   // The velocity too is written in the robot's frame as it will be turned when the command acts.
   command = to_local(robot.id, velocity, turn.velocity(dt), heading_then);

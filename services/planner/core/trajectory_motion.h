@@ -67,6 +67,8 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
 
   RobotCommand plan(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones,
                     double dt) override;
+  Vec2 keep_off_robots(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones,
+                       const Vec2& velocity) const override;
   void sent(std::uint32_t id, const Vec2& velocity, double angular) override;
   void begin_tick() override;
   void set_actuation_latency(double latency, bool measured) override {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "services/planner/core/planner_test_util.h"
@@ -172,6 +174,35 @@ TEST(TrajectoryMotion, WithAMeasuredDelayTheVelocityIsWrittenInTheFrameTheRobotW
   EXPECT_GT(then.x(), 0.5);
   const RobotCommand configured = command_for(false);
   EXPECT_NEAR(to_team(configured, 0.0).y(), 0.0, 1e-9) << "a configured latency: the heading now";
+}
+
+TEST(TrajectoryMotion, ARobotRunningAtSpeedTurnsSlowlyUnlessItWouldArriveFacingWrong) {
+  // Facing +x. At rest it turns at max_angular_speed (6 rad/s). Running at 2 m/s towards a target 9 m
+  // ahead (about 3.4 s away) it makes a quarter turn at max_turning_acceleration / 2 = 0.75 rad/s: its wheels
+  // hold the velocity, and it still faces right on arrival. A half turn 1 m ahead (braking now, about 0.7
+  // s away) needs more than 4 rad/s to face right on arrival: it turns that fast.
+  const MotionLimits limits{.max_turning_acceleration = 1.5};
+  const auto turn_at = [&](const Vec2& velocity, const Vec2& target, double orientation, double last_turn) {
+    TrajectoryMotionPlanner motion(limits);
+    wm::RobotState robot = robot_at({-4, 0});
+    robot.velocity = velocity;
+    Zones zones;
+    zones.robots = {{.id = 1, .ours = true, .position = robot.position, .velocity = velocity}};
+    MotionIntent intent = go_to(target);
+    intent.orientation = orientation;
+    motion.begin_tick();
+    motion.sent(1, velocity, last_turn);
+    return std::abs(motion.plan(robot, intent, zones, 0.01).angular);
+  };
+  const double quarter = std::numbers::pi / 2;
+  EXPECT_GT(turn_at(Vec2::Zero(), {5, 0}, quarter, 6.0), 5.9);
+  const double running = turn_at(Vec2(2, 0), {5, 0}, quarter, 0.75);
+  EXPECT_LE(running, 0.75 + 1e-9);
+  EXPECT_GT(running, 0.7) << "still turning, at the limit";
+  EXPECT_GT(turn_at(Vec2(2, 0), {-3, 0}, std::numbers::pi, 5.0), 4.0) << "arriving soon: as fast as needed";
+  EXPECT_DOUBLE_EQ(limits.angular_speed_at(0.2), 6.0) << "0.2 m/s * 6 rad/s = 1.2 m/s^2: under the limit";
+  EXPECT_DOUBLE_EQ(limits.angular_speed_at(3.0), 0.5);
+  EXPECT_DOUBLE_EQ(MotionLimits{}.angular_speed_at(3.0), 6.0) << "no limit by default";
 }
 
 TEST(TrajectoryMotion, ARobotInsideAZoneWhoseExitARobotStandsByDrivesStraightOut) {
