@@ -515,16 +515,17 @@ int main(int argc, char** argv) {
                     contact_frames > 0 ? (", " + std::to_string(contact_frames) + " contact frames").c_str() : "",
                     match["finished"].get<bool>() ? "" : " (no final whistle)", avoidable_fouls(match).c_str());
         for (const nlohmann::json& contact : match["contacts"]) {
-          std::printf("      contact at %.1f s for %.2f s: %s %d, %s %d, closest %.3f m, %s, ball %s m from the nearer\n",
+          std::printf("      contact at %.1f s for %.2f s: %s %d, %s %d, closest %.3f m, %s",
                       contact["from_s"].get<double>(), contact["seconds"].get<double>(),
                       contact["robots"][0]["team"].get<std::string>().c_str(), contact["robots"][0]["id"].get<int>(),
                       contact["robots"][1]["team"].get<std::string>().c_str(), contact["robots"][1]["id"].get<int>(),
                       contact["closest_m"].get<double>(),
                       contact["command"].is_null() ? "before any command"
-                                                   : contact["command"].get<std::string>().c_str(),
-                      contact["ball_distance_m"].is_null()
-                          ? "unknown"
-                          : std::to_string(contact["ball_distance_m"].get<double>()).substr(0, 4).c_str());
+                                                   : contact["command"].get<std::string>().c_str());
+          if (!contact["ball_distance_m"].is_null()) {
+            std::printf(", ball %.2f m from the nearer", contact["ball_distance_m"].get<double>());
+          }
+          std::printf("\n");
         }
         std::fflush(stdout);
         results[job.pairing].push_back(std::move(match));

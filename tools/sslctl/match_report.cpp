@@ -41,6 +41,12 @@ std::string tally_text(const RestartTally& t) {
 
 nlohmann::json tally_json(const RestartTally& t) { return {{"taken", t.taken}, {"kept", t.kept}, {"goals", t.goals}}; }
 
+/// Two robots as [{"team", "id"}, {"team", "id"}].
+nlohmann::json robots_json(const MatchReport::RobotId& first, const MatchReport::RobotId& second) {
+  return {{{"team", std::string(to_string(first.team))}, {"id", first.id}},
+          {{"team", std::string(to_string(second.team))}, {"id", second.id}}};
+}
+
 }  // namespace
 
 MatchReportBuilder::Activity MatchReportBuilder::activity_of(Command command) {
@@ -308,7 +314,7 @@ std::string to_text(const MatchReport& r) {
   if (!r.contacts.empty()) {
     out << "contacts: " << r.contacts.size() << " episodes\n";
     for (const MatchReport::ContactEpisode& c : r.contacts) {
-      std::snprintf(line, sizeof line, "  %s for %.2f s (%llu frames): %s %u, %s %u, closest %.3f m, %s", 
+      std::snprintf(line, sizeof line, "  %s for %.2f s (%llu frames): %s %u, %s %u, closest %.3f m, %s",
                     clock_text(c.from).c_str(), c.seconds, static_cast<unsigned long long>(c.frames),
                     std::string(to_string(c.first.team)).c_str(), c.first.id,
                     std::string(to_string(c.second.team)).c_str(), c.second.id, c.closest,
@@ -404,17 +410,13 @@ std::string to_json(const MatchReport& r) {
     const MatchReport::ClosestRobots& c = *r.closest_robots;
     out["closest_robots"] = {{"distance_m", c.distance},
                              {"at_s", c.at},
-                             {"robots",
-                              {{{"team", std::string(to_string(c.first.team))}, {"id", c.first.id}},
-                               {{"team", std::string(to_string(c.second.team))}, {"id", c.second.id}}}}};
+                             {"robots", robots_json(c.first, c.second)}};
   }
   out["contact_frames"] = r.contact_frames;
   out["contacts"] = json::array();
   for (const MatchReport::ContactEpisode& c : r.contacts) {
     out["contacts"].push_back(
-        {{"robots",
-          {{{"team", std::string(to_string(c.first.team))}, {"id", c.first.id}},
-           {{"team", std::string(to_string(c.second.team))}, {"id", c.second.id}}}},
+        {{"robots", robots_json(c.first, c.second)},
          {"from_s", c.from},
          {"seconds", c.seconds},
          {"frames", c.frames},

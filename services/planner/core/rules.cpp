@@ -25,10 +25,15 @@ RuleLimits rule_limits(const wm::GameState& game, const PlannerConfig& config, b
   return limits;
 }
 
+namespace {
+/// Whether `robot` must keep away from the ball now (not the robot exempt from it).
+bool keeps_away(const RuleLimits& limits, const wm::RobotState& robot) {
+  return limits.keep_away_from_ball > 0 && !(limits.exempt && *limits.exempt == robot.id);
+}
+}  // namespace
+
 bool escapes_ball(const RuleLimits& limits, const wm::RobotState& robot, const std::optional<Vec2>& ball) {
-  const bool exempt = limits.exempt && *limits.exempt == robot.id;
-  return !exempt && limits.keep_away_from_ball > 0 && ball &&
-         (robot.position - *ball).norm() < limits.keep_away_from_ball;
+  return keeps_away(limits, robot) && ball && (robot.position - *ball).norm() < limits.keep_away_from_ball;
 }
 
 RobotCommand enforce(const RuleLimits& limits, const wm::RobotState& robot, RobotCommand command,
@@ -44,8 +49,7 @@ RobotCommand enforce(const RuleLimits& limits, const wm::RobotState& robot, Robo
     command.chip_angle = 0;
   }
   Vec2 velocity = to_team(command, robot.orientation);
-  const bool exempt = limits.exempt && *limits.exempt == robot.id;
-  if (limits.keep_away_from_ball > 0 && !exempt) command.dribbler_rpm = 0;
+  if (keeps_away(limits, robot)) command.dribbler_rpm = 0;
   if (escapes_ball(limits, robot, ball)) {
     const Vec2 away = robot.position - *ball;
     const double distance = away.norm();

@@ -245,6 +245,13 @@ void TrajectoryMotionPlanner::zone_bounds(const wm::RobotState& robot, const Mot
 Vec2 TrajectoryMotionPlanner::keep_off_robots(const wm::RobotState& robot, const MotionIntent& intent,
                                               const Zones& zones, const Vec2& velocity) const {
   std::vector<SpeedBound> bounds;
+  return keep_off_robots(robot, intent, zones, velocity, bounds);
+}
+
+Vec2 TrajectoryMotionPlanner::keep_off_robots(const wm::RobotState& robot, const MotionIntent& intent,
+                                              const Zones& zones, const Vec2& velocity,
+                                              std::vector<SpeedBound>& bounds) const {
+  bounds.clear();
   const bool at_ball = intent.dribble || intent.kick != KickType::kNone;
   contact_bounds(robot, zones, at_ball, at_ball || intent.contests_ball, bounds);
   return within(velocity, bounds);
@@ -365,7 +372,7 @@ RobotCommand TrajectoryMotionPlanner::plan(const wm::RobotState& robot, const Mo
   std::vector<SpeedBound> bounds;
   zone_bounds(robot, intent, zones, bounds);
   velocity = within(velocity, bounds);
-  velocity = keep_off_robots(robot, intent, zones, velocity);
+  velocity = keep_off_robots(robot, intent, zones, velocity, bounds);
 
   // With a measured delay the heading is planned from where the last command turns it by the time this
   // one acts: robots that answer late overshoot their heading otherwise (match_series --conditions realistic,

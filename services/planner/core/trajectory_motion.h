@@ -114,6 +114,9 @@ class TrajectoryMotionPlanner final : public MotionPlanner {
   /// The contact guard's bounds on `robot`'s velocity, one per other robot where it is now and, unless
   /// `at_ball` (the robot dribbling or armed to kick) or `for_ball` (contesting the ball) with the other by
   /// the ball too, where it will be when the command acts.
+  /// keep_off_robots with `bounds` as scratch (cleared first): plan() reuses its own.
+  Vec2 keep_off_robots(const wm::RobotState& robot, const MotionIntent& intent, const Zones& zones,
+                       const Vec2& velocity, std::vector<SpeedBound>& bounds) const;
   void contact_bounds(const wm::RobotState& robot, const Zones& zones, bool at_ball, bool for_ball,
                       std::vector<SpeedBound>& bounds) const;
   /// Bounds so that `robot` can still stop before each defense zone the intent keeps it out of (and the
