@@ -248,6 +248,7 @@ std::optional<std::string> play_in_child(const Pairing& pairing, std::uint64_t s
 struct Totals {
   double goals_for = 0, goals_against = 0;
   double passes_tried = 0, passes_completed = 0, shots = 0, on_target = 0, possession = 0, possession_all = 0;
+  double shots_saved = 0, shots_blocked = 0, shot_distance = 0;
   double passes_intercepted = 0, passes_out = 0;
   /// Restarts of one kind: taken, kept (or scored), goals with no opponent touch since.
   struct Restarts {
@@ -274,6 +275,9 @@ void add(Totals& t, const nlohmann::json& match, const char* us, const char* the
     t.passes_completed += mine["play"]["passes_completed"].get<double>();
     t.shots += mine["play"]["shots"].get<double>();
     t.on_target += mine["play"]["shots_on_target"].get<double>();
+    t.shots_saved += mine["play"]["shots_saved"].get<double>();
+    t.shots_blocked += mine["play"]["shots_blocked"].get<double>();
+    t.shot_distance += mine["play"]["shot_distance_mean_m"].get<double>() * mine["play"]["shots"].get<double>();
     t.possession += mine["play"]["possession_s"].get<double>();
     t.possession_all += mine["play"]["possession_s"].get<double>() + theirs["play"]["possession_s"].get<double>();
     t.passes_intercepted += mine["play"]["passes_intercepted"].get<double>();
@@ -344,6 +348,9 @@ void print_pairing(const Pairing& pairing, const std::vector<nlohmann::json>& ma
   row("  out of play first", a.passes_out / n, b.passes_out / n);
   row("shots", a.shots / n, b.shots / n);
   row("shots on target", a.on_target / n, b.on_target / n);
+  row("  saved by the keeper", a.shots_saved / n, b.shots_saved / n);
+  row("  blocked by a field player", a.shots_blocked / n, b.shots_blocked / n);
+  row("  from (m, mean)", a.shots > 0 ? a.shot_distance / a.shots : 0, b.shots > 0 ? b.shot_distance / b.shots : 0);
   row("possession (%)", ratio(a.possession, a.possession_all), ratio(b.possession, b.possession_all), "%14.0f");
   for (auto [name, restarts] : {std::pair{"kickoffs", &Totals::kickoffs}, std::pair{"penalties", &Totals::penalties},
                                  std::pair{"free kicks", &Totals::free_kicks}}) {

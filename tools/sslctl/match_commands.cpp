@@ -32,8 +32,8 @@ bool add_referee(MatchReportBuilder& builder, std::span<const std::uint8_t> byte
   return true;
 }
 
-/// One SSL-Vision packet into the builder (metres): a camera frame's robots with its most confident ball, and
-/// the field's size from geometry (positive sizes only); false when it does not decode. `robots` is scratch.
+/// One SSL-Vision packet into the builder (metres): a camera frame's robots with its most confident ball (its
+/// camera and capture time with it), and the field's size from geometry (positive sizes only); false when it does not decode. `robots` is scratch.
 bool add_vision(MatchReportBuilder& builder, std::span<const std::uint8_t> bytes, time::Timestamp t,
                 std::vector<PlayAccount::Robot>& robots) {
   auto packet = league::decode_vision_wrapper(bytes);
@@ -59,7 +59,9 @@ bool add_vision(MatchReportBuilder& builder, std::span<const std::uint8_t> bytes
     if (best == nullptr || ball.confidence() > best->confidence()) best = &ball;
   }
   if (best != nullptr) {
-    builder.on_frame(geom::Vec2(best->x() / 1000.0, best->y() / 1000.0), robots, t);
+    builder.on_frame(geom::Vec2(best->x() / 1000.0, best->y() / 1000.0), robots, t,
+                     PlayAccount::Camera{.id = frame.camera_id(),
+                                         .capture = time::Timestamp::from_seconds(frame.t_capture())});
   } else {
     builder.on_robots(robots, t);
   }

@@ -130,6 +130,7 @@ void MatchReportBuilder::on_referee(const referee::RefereeState& state, time::Ti
       }
     }
   }
+  play_.set_keepers(state.blue.goalkeeper, state.yellow.goalkeeper);
   play_.on_referee(activity_of(state.command) == Activity::kInPlay, state.blue_team_on_positive_half, restart);
   report_.final_stage = state.stage;
   if (state.stage == referee::Stage::kPostGame) report_.final_whistle = true;
@@ -174,9 +175,9 @@ void MatchReportBuilder::on_ball(const geom::Vec2& ball, time::Timestamp t) {
 }
 
 void MatchReportBuilder::on_frame(const geom::Vec2& ball, std::span<const PlayAccount::Robot> robots,
-                                  time::Timestamp t) {
+                                  time::Timestamp t, std::optional<PlayAccount::Camera> camera) {
   if (last_ball_time_ && t < *last_ball_time_) return;
-  play_.on_frame(ball, robots, t);
+  play_.on_frame(ball, robots, t, camera);
   on_ball(ball, t);
   on_robots(robots, t);
 }
@@ -345,10 +346,11 @@ std::string to_text(const MatchReport& r) {
       char text[384];
       std::snprintf(text, sizeof text,
                     "play %s: passes %u tried, %u completed (%.0f %%), %u intercepted, %u out; shots %u, %u on "
-                    "target; kicks %u; possession %.0f %%; kickoffs %s, penalties %s, free kicks %s (taken, kept, "
-                    "goals from them)\n",
+                    "target, %u scored, %u saved, %u blocked, from %.1f m on average; kicks %u; possession %.0f %%; "
+                    "kickoffs %s, penalties %s, free kicks %s (taken, kept, goals from them)\n",
                     name, p.passes_tried, p.passes_completed, percent(p.passes_completed, p.passes_tried),
-                    p.passes_intercepted, p.passes_out, p.shots, p.shots_on_target, p.kicks,
+                    p.passes_intercepted, p.passes_out, p.shots, p.shots_on_target, p.shots_scored, p.shots_saved,
+                    p.shots_blocked, p.shots > 0 ? p.shot_distance / p.shots : 0.0, p.kicks,
                     percent(p.possession, possessed), tally_text(p.kickoffs).c_str(), tally_text(p.penalties).c_str(),
                     tally_text(p.free_kicks).c_str());
       out << text;
@@ -386,6 +388,9 @@ std::string to_json(const MatchReport& r) {
       out["teams"][key]["play"] = {{"passes_tried", p.passes_tried}, {"passes_completed", p.passes_completed},
                                    {"passes_intercepted", p.passes_intercepted}, {"passes_out", p.passes_out},
                                    {"shots", p.shots},               {"shots_on_target", p.shots_on_target},
+                                   {"shots_scored", p.shots_scored}, {"shots_saved", p.shots_saved},
+                                   {"shots_blocked", p.shots_blocked},
+                                   {"shot_distance_mean_m", p.shots > 0 ? p.shot_distance / p.shots : 0.0},
                                    {"kicks", p.kicks},               {"possession_s", p.possession},
                                    {"kickoffs", tally_json(p.kickoffs)},
                                    {"penalties", tally_json(p.penalties)},

@@ -151,7 +151,8 @@ class MatchReportBuilder {
   void on_ball(const geom::Vec2& ball, time::Timestamp t);
   /// The ball and every robot seen at `t` (the same frame): on_ball, on_robots, and the play account's
   /// passes, shots and possession.
-  void on_frame(const geom::Vec2& ball, std::span<const PlayAccount::Robot> robots, time::Timestamp t);
+  void on_frame(const geom::Vec2& ball, std::span<const PlayAccount::Robot> robots, time::Timestamp t,
+                std::optional<PlayAccount::Camera> camera = std::nullopt);
   /// Every robot of a frame at `t` without the ball: the closest robots and contact frames (frames before the
   /// previous one are ignored).
   void on_robots(std::span<const PlayAccount::Robot> robots, time::Timestamp t);

@@ -9,10 +9,15 @@
 //    time in play, by the last toucher's team (before the first touch, nobody's).
 //  * a kick: the ball's speed rises by at least kKickSpeedGain between two samples to at least
 //    kKickMinSpeed (and below kMaxBallSpeed: faster is the ball put somewhere else), a robot within
-//    kKickReach: the nearest one kicked it. The first sample after play starts is not compared.
+//    kKickReach: the nearest one kicked it. The first sample after play starts is not compared. With cameras
+//    told, the speed is measured between one camera's samples, and the same robot's kick seen by another
+//    camera within kSameKick is not counted again.
 //  * a shot: a kick whose line crosses the kicker's opponent's goal line within kShotWidthMargin of the goal
 //    mouth, towards it (unless its kicker meant a pass or a clearance); on target when it crosses inside the
 //    mouth (posts excluded by the ball's radius). Without the field's size (set_field) no kick is a shot.
+//    Its end: scored (its team's goal before anybody else touches the ball), saved (the opponents' keeper,
+//    as set_keepers tells, touches it first), blocked (another opponent touches it first), or none of these
+//    (a teammate touches it first, or play stops: wide).
 //  * a pass: any other kick, unless the observer says the kicker meant something else (Intent::kClear, or
 //    Intent::kShot: a shooter's kick that misses the goal's direction is a deflection, not a pass), or that
 //    its kicker was not armed (Intent::kNoKick: the ball came off the robot's body, a touch and no kick).
@@ -24,6 +29,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <span>
 
@@ -56,6 +62,10 @@ struct TeamPlay {
   std::uint32_t passes_out = 0;          // failed: play stopped first (the ball left the field, a foul, ...)
   std::uint32_t shots = 0;
   std::uint32_t shots_on_target = 0;
+  std::uint32_t shots_scored = 0;   // of the shots: the team's goal before anybody else touched the ball
+  std::uint32_t shots_saved = 0;    // the opponents' keeper touched the ball first
+  std::uint32_t shots_blocked = 0;  // another opponent touched the ball first
+  double shot_distance = 0;         // m: the sum over the shots of the ball's distance from the goal centre
   std::uint32_t kicks = 0;        // every kick in play (passes, shots, clearances)
   RestartTally kickoffs;
   RestartTally penalties;
@@ -69,6 +79,7 @@ class PlayAccount {
   static constexpr double kKickReach = 0.25;       // m: robot centre to ball when a kick is recognised
   static constexpr double kKickSpeedGain = 1.0;    // m/s between two samples
   static constexpr double kKickMinSpeed = 1.5;     // m/s
+  static constexpr double kSameKick = 0.1;          // s: the kicker's kick seen again this soon is the same
   static constexpr double kMaxBallSpeed = 12.0;    // m/s: faster between two samples is a teleport, not a kick
   static constexpr double kShotWidthMargin = 0.3;  // m beside the goal mouth a shot may cross
   static constexpr double kBallRadius = 0.0215;    // m
@@ -90,10 +101,21 @@ class PlayAccount {
   /// (or is about to be) in play from.
   void on_referee(bool in_play, std::optional<bool> blue_on_positive_half,
                   std::optional<Restart> restart = std::nullopt);
-  /// A goal for `team` (settles the restart it was taking).
+  /// A goal for `team` (settles the restart it was taking and the shot it kicked).
   void on_goal(TeamColor team);
-  /// One observation of the ball and every robot seen at `t` (older samples are ignored).
-  void on_frame(const geom::Vec2& ball, std::span<const Robot> robots, time::Timestamp t);
+  /// Each team's keeper, as the referee names it (whose first touch saves a shot).
+  void set_keepers(std::uint32_t blue, std::uint32_t yellow);
+  /// The camera a sample comes from and when it captured it (its own clock): the ball's speed is measured
+  /// between samples of one camera.
+  struct Camera {
+    std::uint32_t id = 0;
+    time::Timestamp capture;
+  };
+
+  /// One observation of the ball and every robot seen at `t` (older samples are ignored); without a camera
+  /// the ball's speed is measured between successive samples at their times `t`.
+  void on_frame(const geom::Vec2& ball, std::span<const Robot> robots, time::Timestamp t,
+                std::optional<Camera> camera = std::nullopt);
 
   const TeamPlay& team(TeamColor color) const { return color == TeamColor::kBlue ? blue_ : yellow_; }
 
@@ -103,6 +125,10 @@ class PlayAccount {
     std::uint32_t kicker;
   };
   TeamPlay& team_of(TeamColor color) { return color == TeamColor::kBlue ? blue_ : yellow_; }
+  struct OpenShot {
+    TeamColor team;
+    std::uint32_t kicker;
+  };
   struct OpenRestart {
     Restart restart;
     std::optional<std::uint32_t> taker;  // once taken
@@ -113,6 +139,10 @@ class PlayAccount {
   /// the move of a taken one when the robot is an opponent.
   void settle_restart(const Robot& robot);
   bool is_shot(TeamColor team, const geom::Vec2& ball, const geom::Vec2& velocity, bool& on_target) const;
+  /// A touch (or kick) by `robot` other than the shot's kicker ends the open shot: saved, blocked, or neither.
+  void settle_shot(const Robot& robot);
+  /// x (m) of the goal `team` attacks; needs the field's length and the sides.
+  double attacked_goal_x(TeamColor team) const;
 
   TeamPlay blue_;
   TeamPlay yellow_;
@@ -120,12 +150,27 @@ class PlayAccount {
   double goal_width_ = 0;
   bool in_play_ = false;
   std::optional<bool> blue_on_positive_half_;
+  /// The ball as one camera (or the camera-less stream) last saw it.
+  struct BallTrack {
+    std::optional<time::Timestamp> at;  // its capture time
+    geom::Vec2 ball = geom::Vec2::Zero();
+    double speed = 0;       // m/s, against the sample before
+    bool compared = false;  // its speed was measured in play (the first sample in play is not)
+  };
+  static constexpr std::uint32_t kNoCamera = 0xffffffff;
   std::optional<time::Timestamp> last_frame_;
-  bool compare_speed_ = false;  // false for the first frame in play
-  geom::Vec2 last_ball_ = geom::Vec2::Zero();
-  double last_speed_ = 0;
+  std::map<std::uint32_t, BallTrack> ball_tracks_;  // by camera id
+  struct LastKick {
+    TeamColor team;
+    std::uint32_t kicker;
+    time::Timestamp at;
+  };
+  std::optional<LastKick> last_kick_;
   std::optional<TeamColor> possession_;
   std::optional<OpenPass> open_pass_;
+  std::optional<OpenShot> open_shot_;
+  std::optional<std::uint32_t> blue_keeper_;
+  std::optional<std::uint32_t> yellow_keeper_;
   std::optional<OpenRestart> open_restart_;
   std::optional<Restart> restart_move_;  // taken, and no opponent touched the ball since
   std::optional<Restart> restart_;       // as last told by on_referee

@@ -78,6 +78,52 @@ TEST_F(PlayAccountTest, AKickAtTheOpponentGoalIsAShotOnTargetAndOneBesideItIsNot
   EXPECT_EQ(blue.passes_tried, 0u);
 }
 
+TEST_F(PlayAccountTest, AShotEndsSavedByTheKeeperBlockedByAnotherOpponentScoredOrWide) {
+  account_.set_keepers(0, 1);  // yellow 1 keeps yellow's goal
+  const auto shot = [&](std::vector<Robot> robots, Vec2 velocity, double seconds) {
+    account_.on_referee(false, false);
+    account_.on_referee(true, false);
+    robots_ = std::move(robots);
+    robots_.insert(robots_.begin(), {TeamColor::kBlue, 1, {3, 0}});
+    roll({3.1, 0}, {0, 0}, 0.2);
+    roll({3.1, 0}, velocity, seconds);
+  };
+  shot({{TeamColor::kYellow, 1, {4.2, 0}}}, {5, 0}, 0.3);                                    // at the keeper
+  shot({{TeamColor::kYellow, 1, {4.4, 0.4}}, {TeamColor::kYellow, 2, {3.8, 0}}}, {5, 0}, 0.3);  // at yellow 2
+  shot({{TeamColor::kBlue, 2, {3.8, 0}}}, {5, 0}, 0.3);  // a teammate's touch: none of them
+  shot({}, {5, 0}, 0.28);                                // in
+  account_.on_goal(TeamColor::kBlue);
+  shot({}, {5, 2.5}, 0.3);  // beside the post, and out
+  account_.on_referee(false, false);
+  const TeamPlay& blue = account_.team(TeamColor::kBlue);
+  EXPECT_EQ(blue.shots, 5u);
+  EXPECT_EQ(blue.shots_saved, 1u);
+  EXPECT_EQ(blue.shots_blocked, 1u);
+  EXPECT_EQ(blue.shots_scored, 1u);
+  EXPECT_NEAR(blue.shot_distance / blue.shots, 1.35, 0.01);  // recognised 10 ms (5 cm) after the kick
+}
+
+TEST_F(PlayAccountTest, TwoCamerasSeeingTheBallApartMakeNoKickButAKickSeenByEitherCounts) {
+  // Camera 0 sees the ball 3 cm from where camera 1 does; their packets arrive 1 ms apart every 16 ms.
+  const Vec2 offset(0.03, 0);
+  const auto both = [&](const Vec2& ball, double capture) {
+    for (std::uint32_t camera : {0u, 1u}) {
+      account_.on_frame(ball + (camera == 0 ? offset : Vec2::Zero()), robots_,
+                        kStart + time::duration_from_seconds(now_),
+                        PlayAccount::Camera{.id = camera, .capture = time::Timestamp::from_seconds(capture)});
+      now_ += 0.001;
+    }
+    now_ += 0.014;
+  };
+  double capture = 50.0;
+  for (int i = 0; i < 30; ++i, capture += 0.016) both({0.1, 0}, capture);  // at blue 1's dribbler
+  EXPECT_EQ(account_.team(TeamColor::kBlue).kicks, 0u);
+  const Vec2 kick = Vec2(1.8, 1.0).normalized() * 3;  // to blue 2
+  for (int i = 1; i < 30; ++i, capture += 0.016) both(Vec2(0.1, 0) + kick * (i * 0.016), capture);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).kicks, 1u);
+  EXPECT_EQ(account_.team(TeamColor::kBlue).passes_tried, 1u);
+}
+
 TEST_F(PlayAccountTest, AfterTheSideSwapTheOtherGoalIsBluesTarget) {
   account_.on_referee(true, true);  // blue now defends the positive half
   robots_ = {{TeamColor::kBlue, 1, {3, 0}}};
