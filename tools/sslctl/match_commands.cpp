@@ -33,7 +33,8 @@ bool add_referee(MatchReportBuilder& builder, std::span<const std::uint8_t> byte
 }
 
 /// One SSL-Vision packet into the builder (metres): a camera frame's robots with its most confident ball (its
-/// camera and capture time with it), and the field's size from geometry (positive sizes only); false when it does not decode. `robots` is scratch.
+/// camera and capture time with it), and the field's size from geometry (positive sizes only); false when it
+/// does not decode. `robots` is scratch.
 bool add_vision(MatchReportBuilder& builder, std::span<const std::uint8_t> bytes, time::Timestamp t,
                 std::vector<PlayAccount::Robot>& robots) {
   auto packet = league::decode_vision_wrapper(bytes);

@@ -79,7 +79,7 @@ class PlayAccount {
   static constexpr double kKickReach = 0.25;       // m: robot centre to ball when a kick is recognised
   static constexpr double kKickSpeedGain = 1.0;    // m/s between two samples
   static constexpr double kKickMinSpeed = 1.5;     // m/s
-  static constexpr double kSameKick = 0.1;          // s: the kicker's kick seen again this soon is the same
+  static constexpr double kSameKick = 0.1;         // s: the kicker's kick seen again this soon is the same
   static constexpr double kMaxBallSpeed = 12.0;    // m/s: faster between two samples is a teleport, not a kick
   static constexpr double kShotWidthMargin = 0.3;  // m beside the goal mouth a shot may cross
   static constexpr double kBallRadius = 0.0215;    // m
