@@ -60,12 +60,15 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "libs/common/team.h"
 #include "services/planner/core/planner.h"
 #include "services/planner/core/planner_test_util.h"
 #include "services/planner/core/skills.h"
+#include "services/planner/core/team_play.h"
 #include "services/planner/testing/planned_match.h"
 #include "services/simulator/core/simulator.h"
 #include "services/world_model/core/sim_harness.h"
@@ -1110,43 +1113,41 @@ TEST_P(PlannerSimReferee, ReceiveControlsAtLeastEightyPercentOfPassesFromTwoToFi
   EXPECT_GE(controlled, kPasses * 8 / 10);
 }
 
-TEST_P(PlannerSimReferee, RedirectShootsAtLeastEightOfTenPassesOnIntoTheGoalAtTheFirstTouch) {
-  // The free kick's set play without opponents: the ball lies 0.9-1.6 m in front of their defense area, near
-  // the middle; our robot 1 passes it (pass skill, arriving at 2.5 m/s) to robot 2 (redirect skill, aiming
-  // at the middle of their empty goal) at a point 0.4-0.8 m beside the area, where the pass turns by at most
-  // 0.8 rad into the shot. Redirected: the ball crosses their goal line inside the mouth within 5 s of the
-  // pass, faster than 2 m/s (shot on, not carried), and robot 2 never held it.
-  constexpr int kPasses = 10;
-  constexpr double kMaxTurn = 0.8;  // rad, as the set play allows (TeamPlayParams::redirect_max_angle)
-  std::mt19937 random(static_cast<std::uint32_t>(seed()));
+/// A pass from where the ball lies to a point where robot 2 (redirect skill, aiming at the middle of their
+/// empty goal) shoots it on at the first touch: robot 1 passes it (pass skill, arriving at 2.5 m/s). Each of
+/// `passes` attempts draws the ball and the point with `draw(uniform, match)`, redrawn until the
+/// pass turns by `min_turn`..`max_turn` rad into the shot. Returns how many were redirected: the ball crossed
+/// their goal line inside the mouth within 5 s of the pass, faster than 2 m/s (shot on, not carried), and
+/// robot 2 never held it.
+template <typename Draw>
+int redirected_passes(const Case& c, std::uint64_t first_seed, int passes, double min_turn, double max_turn,
+                      Draw draw) {
+  std::mt19937 random(static_cast<std::uint32_t>(first_seed));
   const auto uniform = [&](double low, double high) { return std::uniform_real_distribution<double>(low, high)(random); };
   int scored = 0;
-  for (int attempt = 0; attempt < kPasses; ++attempt) {
-    LockstepMatch m(param(), seed() + static_cast<std::uint64_t>(attempt));
+  for (int attempt = 0; attempt < passes; ++attempt) {
+    LockstepMatch m(c, first_seed + static_cast<std::uint64_t>(attempt));
     for (std::uint32_t id = 0; id < kRobots; ++id) {
       if (id != 1 && id != 2) take_off(m, true, id);
       take_off(m, false, id);
     }
     const double hl = m.half_length();
-    const double area_front = hl - m.field().penalty_area_depth;
     const Vec2 goal(hl, 0.0);
     Vec2 ball = Vec2::Zero();
     Vec2 point = Vec2::Zero();
     double turn = 0;
     do {
-      ball = Vec2(area_front - uniform(0.9, 1.6), uniform(-0.5, 0.5));
-      const double side = uniform(-1, 1) < 0 ? -1.0 : 1.0;
-      point = Vec2(ball.x() + uniform(-0.3, 0.3), side * (m.field().penalty_area_width / 2 + uniform(0.4, 0.8)));
+      std::tie(ball, point) = draw(uniform, m);
       const Vec2 back = (ball - point).normalized();
       turn = std::acos(std::clamp(back.dot((goal - point).normalized()), -1.0, 1.0));
-    } while (turn > kMaxTurn);
+    } while (turn < min_turn || turn > max_turn);
     m.place_ball(ball);
     const Vec2 u = (point - ball).normalized();
     const Vec2 shot = (goal - point).normalized();
     m.place(true, 1, ball - u * 0.5, std::atan2(u.y(), u.x()));
     m.place(true, 2, point - shot * (kR + kBallRadius), std::atan2(shot.y(), shot.x()));
     m.planner(true).override_skill(1, SkillOverride{PassParams{.receiver = point, .arrival_speed = 2.5}});
-    m.planner(true).override_skill(2, SkillOverride{RedirectParams{.point = point, .aim = goal}});
+    m.planner(true).override_skill(2, SkillOverride{RedirectParams{.point = point, .aim = goal, .max_angle = max_turn}});
     m.script({{kWarmUp, RefereeCommand::kForceStart}});
     bool kicked = false;
     bool held = false;
@@ -1176,11 +1177,47 @@ TEST_P(PlannerSimReferee, RedirectShootsAtLeastEightOfTenPassesOnIntoTheGoalAtTh
     if (!in || held) {
       std::printf("[%s] redirect at (%.2f, %.2f), turning %.2f rad, of a pass from (%.2f, %.2f) missed (kicked: %d, "
                   "held: %d)\n",
-                  param().name().c_str(), point.x(), point.y(), turn, ball.x(), ball.y(), kicked ? 1 : 0, held ? 1 : 0);
+                  c.name().c_str(), point.x(), point.y(), turn, ball.x(), ball.y(), kicked ? 1 : 0, held ? 1 : 0);
     }
     scored += in && !held ? 1 : 0;
   }
+  return scored;
+}
+
+TEST_P(PlannerSimReferee, RedirectShootsAtLeastEightOfTenPassesOnIntoTheGoalAtTheFirstTouch) {
+  // The free kick's set play without opponents: the ball lies 0.9-1.6 m in front of their defense area, near
+  // the middle; the point 0.4-0.8 m beside the area, where the pass turns by at most 0.8 rad into the shot
+  // (TeamPlayParams::redirect_max_angle).
+  constexpr int kPasses = 10;
+  const int scored = redirected_passes(param(), seed(), kPasses, 0.0, TeamPlayParams{}.redirect_max_angle,
+                                       [](const auto& uniform, const LockstepMatch& m) {
+    const double area_front = m.half_length() - m.field().penalty_area_depth;
+    const Vec2 ball(area_front - uniform(0.9, 1.6), uniform(-0.5, 0.5));
+    const double side = uniform(-1, 1) < 0 ? -1.0 : 1.0;
+    const Vec2 point(ball.x() + uniform(-0.3, 0.3), side * (m.field().penalty_area_width / 2 + uniform(0.4, 0.8)));
+    return std::pair(ball, point);
+  });
   std::printf("[%s] redirect: %d of %d passes shot on into the goal\n", param().name().c_str(), scored, kPasses);
+  EXPECT_GE(scored, kPasses * 8 / 10);
+}
+
+TEST_P(PlannerSimReferee, ACutBackFromTheWingIsShotOnAtTheFirstTouchInAtLeastEightOfTen) {
+  // A one-touch pass wider than the free kick's set play turns: the ball lies on the wing beside their
+  // defense area, 0.2-1.0 m from their goal line and 0.3-0.9 m outside the area's side; the point in the
+  // slot 0.4-1.4 m in front of the area, within the area's width, where the pass turns by more than the set
+  // play's 0.8 rad, up to kCutBackMaxTurn (a ball cut back from near their goal line into the slot).
+  constexpr int kPasses = 10;
+  constexpr double kCutBackMaxTurn = 1.2;  // rad
+  const int scored = redirected_passes(param(), seed(), kPasses, TeamPlayParams{}.redirect_max_angle, kCutBackMaxTurn,
+                                       [](const auto& uniform, const LockstepMatch& m) {
+    const double hl = m.half_length();
+    const double half_area = m.field().penalty_area_width / 2;
+    const double side = uniform(-1, 1) < 0 ? -1.0 : 1.0;
+    const Vec2 ball(hl - uniform(0.2, 1.0), side * (half_area + uniform(0.3, 0.9)));
+    const Vec2 point(hl - m.field().penalty_area_depth - uniform(0.4, 1.4), uniform(-half_area, half_area));
+    return std::pair(ball, point);
+  });
+  std::printf("[%s] cut-back: %d of %d passes shot on into the goal\n", param().name().c_str(), scored, kPasses);
   EXPECT_GE(scored, kPasses * 8 / 10);
 }
 
