@@ -350,7 +350,7 @@ std::string to_text(const MatchReport& r) {
                     "kickoffs %s, penalties %s, free kicks %s (taken, kept, goals from them)\n",
                     name, p.passes_tried, p.passes_completed, percent(p.passes_completed, p.passes_tried),
                     p.passes_intercepted, p.passes_out, p.shots, p.shots_on_target, p.shots_scored, p.shots_saved,
-                    p.shots_blocked, p.shots > 0 ? p.shot_distance / p.shots : 0.0, p.kicks,
+                    p.shots_blocked, p.shot_distance_mean(), p.kicks,
                     percent(p.possession, possessed), tally_text(p.kickoffs).c_str(), tally_text(p.penalties).c_str(),
                     tally_text(p.free_kicks).c_str());
       out << text;
@@ -390,7 +390,7 @@ std::string to_json(const MatchReport& r) {
                                    {"shots", p.shots},               {"shots_on_target", p.shots_on_target},
                                    {"shots_scored", p.shots_scored}, {"shots_saved", p.shots_saved},
                                    {"shots_blocked", p.shots_blocked},
-                                   {"shot_distance_mean_m", p.shots > 0 ? p.shot_distance / p.shots : 0.0},
+                                   {"shot_distance_mean_m", p.shot_distance_mean()},
                                    {"kicks", p.kicks},               {"possession_s", p.possession},
                                    {"kickoffs", tally_json(p.kickoffs)},
                                    {"penalties", tally_json(p.penalties)},

@@ -171,13 +171,13 @@ void PlayAccount::on_kick(const Robot& kicker, const geom::Vec2& ball, const geo
     ++play.shots;
     if (on_target) ++play.shots_on_target;
     play.shot_distance += (geom::Vec2(attacked_goal_x(kicker.team), 0) - ball).norm();
-    open_shot_ = OpenShot{kicker.team, kicker.id};
+    open_shot_ = OpenKick{kicker.team, kicker.id};
     return;
   }
   // A clearance, or a shooter's kick that does not go at the goal (a deflection): no pass.
   if (kicker.intent == Intent::kClear || kicker.intent == Intent::kShot) return;
   ++play.passes_tried;
-  open_pass_ = OpenPass{kicker.team, kicker.id};
+  open_pass_ = OpenKick{kicker.team, kicker.id};
 }
 
 double PlayAccount::attacked_goal_x(TeamColor team) const {

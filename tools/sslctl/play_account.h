@@ -66,6 +66,8 @@ struct TeamPlay {
   std::uint32_t shots_saved = 0;    // the opponents' keeper touched the ball first
   std::uint32_t shots_blocked = 0;  // another opponent touched the ball first
   double shot_distance = 0;         // m: the sum over the shots of the ball's distance from the goal centre
+  /// m: the shots' mean distance from the goal centre (0 without shots).
+  double shot_distance_mean() const { return shots > 0 ? shot_distance / shots : 0.0; }
   std::uint32_t kicks = 0;        // every kick in play (passes, shots, clearances)
   RestartTally kickoffs;
   RestartTally penalties;
@@ -120,15 +122,12 @@ class PlayAccount {
   const TeamPlay& team(TeamColor color) const { return color == TeamColor::kBlue ? blue_ : yellow_; }
 
  private:
-  struct OpenPass {
+  /// A pass or shot kicked and not yet settled: who kicked it.
+  struct OpenKick {
     TeamColor team;
     std::uint32_t kicker;
   };
   TeamPlay& team_of(TeamColor color) { return color == TeamColor::kBlue ? blue_ : yellow_; }
-  struct OpenShot {
-    TeamColor team;
-    std::uint32_t kicker;
-  };
   struct OpenRestart {
     Restart restart;
     std::optional<std::uint32_t> taker;  // once taken
@@ -167,8 +166,8 @@ class PlayAccount {
   };
   std::optional<LastKick> last_kick_;
   std::optional<TeamColor> possession_;
-  std::optional<OpenPass> open_pass_;
-  std::optional<OpenShot> open_shot_;
+  std::optional<OpenKick> open_pass_;
+  std::optional<OpenKick> open_shot_;
   std::optional<std::uint32_t> blue_keeper_;
   std::optional<std::uint32_t> yellow_keeper_;
   std::optional<OpenRestart> open_restart_;
