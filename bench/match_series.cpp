@@ -14,7 +14,8 @@
 // PlayAccount on the ground truth, the kicker's intent from its planner's skill), and every game event by
 // type, fouls marked, "avoidable" ones (keep-out, too fast in STOP, defense area, double touch, crash)
 // counted apart; per pairing, camera frames with two robots closer than two radii and a centimetre (contact
-// frames, on the ground truth) and the closest two robots of the series.
+// frames, on the ground truth) and the closest two robots of the series. Under each match's line: each
+// contact and each avoidable foul (when, which robot, where, under which command), the moment to replay.
 // Over 20 seeds or more of base against ball_chaser it also prints the figures of the design's play-quality
 // budgets as BUDGET lines (goal margin, passes completed, avoidable fouls; ./ssl bench's table).
 //
@@ -533,6 +534,15 @@ int main(int argc, char** argv) {
             std::printf(", ball %.2f m from the nearer", contact["ball_distance_m"].get<double>());
           }
           std::printf("\n");
+        }
+        for (const nlohmann::json& foul : match["avoidable_fouls"]) {
+          std::printf("      avoidable foul at %.1f s: %s by %s", foul["at_s"].get<double>(),
+                      foul["type"].get<std::string>().c_str(), foul["team"].get<std::string>().c_str());
+          if (!foul["by_bot"].is_null()) std::printf(" robot %d", foul["by_bot"].get<int>());
+          if (!foul["location"].is_null()) {
+            std::printf(" at (%.2f, %.2f)", foul["location"][0].get<double>(), foul["location"][1].get<double>());
+          }
+          std::printf(", %s\n", foul["command"].get<std::string>().c_str());
         }
         std::fflush(stdout);
         results[job.pairing].push_back(std::move(match));

@@ -96,6 +96,14 @@ void MatchReportBuilder::on_referee(const referee::RefereeState& state, time::Ti
   for (const referee::GameEvent& event : state.game_events) {
     if (!seen_events_.insert(referee::event_key(event)).second) continue;
     ++event_counts_[{event.type, event.by_team}];
+    if (referee::is_avoidable_foul(event.type)) {
+      report_.avoidable_fouls.push_back({.at = at,
+                                         .type = event.type,
+                                         .team = event.by_team,
+                                         .by_bot = event.by_bot,
+                                         .location = event.location,
+                                         .command = state.command});
+    }
     if (event.type == referee::GameEventType::kGoal) {
       MatchReport::Goal goal{.at = at, .stage = state.stage, .team = event.by_team, .by_bot = event.by_bot};
       if (state.stage_time_left) goal.stage_time_left = time::to_seconds(*state.stage_time_left);
@@ -328,6 +336,18 @@ std::string to_text(const MatchReport& r) {
       out << '\n';
     }
   }
+  if (!r.avoidable_fouls.empty()) {
+    out << "avoidable fouls: " << r.avoidable_fouls.size() << '\n';
+    for (const MatchReport::AvoidableFoul& foul : r.avoidable_fouls) {
+      out << "  " << clock_text(foul.at) << "  " << referee::to_string(foul.type) << "  " << team_name(foul.team);
+      if (foul.by_bot) out << " robot " << *foul.by_bot;
+      if (foul.location) {
+        std::snprintf(line, sizeof line, " at (%.2f, %.2f)", foul.location->x(), foul.location->y());
+        out << line;
+      }
+      out << ", " << referee::to_string(foul.command) << '\n';
+    }
+  }
   out << "commands:";
   for (const auto& [command, count] : r.commands) out << ' ' << referee::to_string(command) << ' ' << count << ',';
   out << '\n' << "game events:" << (r.events.empty() ? " none" : "") << '\n';
@@ -428,6 +448,16 @@ std::string to_json(const MatchReport& r) {
          {"closest_m", c.closest},
          {"command", c.command ? json(std::string(referee::to_string(*c.command))) : json(nullptr)},
          {"ball_distance_m", c.ball_distance ? json(*c.ball_distance) : json(nullptr)}});
+  }
+  out["avoidable_fouls"] = json::array();
+  for (const MatchReport::AvoidableFoul& foul : r.avoidable_fouls) {
+    out["avoidable_fouls"].push_back(
+        {{"at_s", foul.at},
+         {"type", std::string(referee::to_string(foul.type))},
+         {"team", team_name(foul.team)},
+         {"by_bot", foul.by_bot ? json(*foul.by_bot) : json(nullptr)},
+         {"location", foul.location ? json{foul.location->x(), foul.location->y()} : json(nullptr)},
+         {"command", std::string(referee::to_string(foul.command))}});
   }
   if (r.longest_stall) {
     out["longest_stall"] = {{"seconds", r.longest_stall->seconds},

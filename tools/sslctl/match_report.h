@@ -1,11 +1,11 @@
 // MatchReport: what a match was, from its referee stream (and vision: the ball, the robots): the score and
 // the goals with their times, time in play / stopped / halted and in play from vision, restarts and
-// commands, game events by type and team, placements and balls out per team, the longest stall, the closest
-// two robots and the contact frames, side and stage changes, and whether the final whistle came. Pure: no sockets,
-// no clocks, no protobuf; the caller feeds samples with their times (any one clock, e.g. a log file's
-// receive times or the simulated clock of a lockstep match). `sslctl match report` feeds it from a live
-// referee (and vision) multicast or an SSL log file; the lockstep match test and bench/match_lockstep feed
-// it the built-in referee's state and the simulator's ball.
+// commands, game events by type and team, each avoidable foul, placements and balls out per team, the
+// longest stall, the closest two robots and the contact frames, side and stage changes, and whether the
+// final whistle came. Pure: no sockets, no clocks, no protobuf; the caller feeds samples with their times
+// (any one clock, e.g. a log file's receive times or the simulated clock of a lockstep match). `sslctl match
+// report` feeds it from a live referee (and vision) multicast or an SSL log file; the lockstep match test and
+// bench/match_lockstep feed it the built-in referee's state and the simulator's ball.
 //
 // Rules of the account:
 //  * in play: NORMAL_START, FORCE_START and DIRECT_FREE_* (the game runs and the halves' clock with it);
@@ -28,6 +28,8 @@
 //    distance from the nearer robot at the closest frame (nullopt without a ball observation).
 //  * per team: placements (BALL_PLACEMENT_<team> commands issued) and balls out (BALL_LEFT_FIELD_TOUCH_LINE
 //    and _GOAL_LINE events by the team, which kicked it out).
+//  * each avoidable foul (referee::is_avoidable_foul) once, with the time of the sample that first carried
+//    it, its team, robot and place as the referee gave them and the command of that sample.
 //
 //   MatchReportBuilder builder;
 //   builder.on_referee(state, t);    // every referee sample, in time order
@@ -71,6 +73,16 @@ struct MatchReport {
     std::optional<double> stage_time_left;  // s, as the referee said at the time
     referee::Team team = referee::Team::kUnknown;  // the scoring team
     std::optional<std::uint32_t> by_bot;
+  };
+  /// A foul the team could have avoided (referee::is_avoidable_foul): when, by whom, where, under which
+  /// command; which match and moment to look at.
+  struct AvoidableFoul {
+    double at = 0;  // s since the first referee sample
+    referee::GameEventType type = referee::GameEventType::kUnknown;
+    referee::Team team = referee::Team::kUnknown;  // the team that committed it
+    std::optional<std::uint32_t> by_bot;
+    std::optional<geom::Vec2> location;  // m, the referee's frame
+    referee::Command command = referee::Command::kHalt;  // the referee's command at the sample
   };
   struct EventCount {
     referee::GameEventType type = referee::GameEventType::kUnknown;
@@ -128,6 +140,7 @@ struct MatchReport {
   std::vector<ContactEpisode> contacts;         // in the order they began
   std::map<referee::Command, std::uint32_t> commands;  // how often each command was issued
   std::vector<EventCount> events;                       // by type, then team
+  std::vector<AvoidableFoul> avoidable_fouls;           // in the order the referee raised them
   std::optional<Stall> longest_stall;                   // nullopt without ball samples
   std::vector<StageChange> stages;
   std::vector<SideChange> sides;

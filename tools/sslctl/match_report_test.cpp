@@ -344,6 +344,46 @@ TEST(MatchReport, PlacementsAndBallsOutPerTeam) {
   EXPECT_EQ(json["teams"]["yellow"]["balls_out"], 2);
 }
 
+TEST(MatchReport, EachAvoidableFoulIsListedOnceWithItsTimeRobotPlaceAndCommand) {
+  Script s;
+  s.command(0, Command::kForceStart, Stage::kNormalFirstHalf);
+  s.state.game_events = {GameEvent{.id = "f1",
+                                   .type = GameEventType::kAttackerDoubleTouchedBall,
+                                   .by_team = Team::kYellow,
+                                   .by_bot = 4,
+                                   .location = Vec2(1.5, -2.0)},
+                         GameEvent{.id = "o1", .type = GameEventType::kBallLeftFieldTouchLine, .by_team = Team::kBlue}};
+  s.command(7.5, Command::kStop, Stage::kNormalFirstHalf);
+  s.repeat(8);  // the same events again: listed once
+  s.state.game_events = {
+      GameEvent{.id = "f2", .type = GameEventType::kBotTooFastInStop, .by_team = Team::kBlue, .by_bot = 2}};
+  s.repeat(9);
+  const MatchReport report = build(s);
+  ASSERT_EQ(report.avoidable_fouls.size(), 2u) << "a ball out is no foul";
+  const MatchReport::AvoidableFoul& touch = report.avoidable_fouls[0];
+  EXPECT_DOUBLE_EQ(touch.at, 7.5);
+  EXPECT_EQ(touch.type, GameEventType::kAttackerDoubleTouchedBall);
+  EXPECT_EQ(touch.team, Team::kYellow);
+  EXPECT_EQ(touch.by_bot, 4u);
+  ASSERT_TRUE(touch.location);
+  EXPECT_DOUBLE_EQ(touch.location->x(), 1.5);
+  EXPECT_EQ(touch.command, Command::kStop);
+  EXPECT_DOUBLE_EQ(report.avoidable_fouls[1].at, 9);
+  EXPECT_EQ(report.avoidable_fouls[1].team, Team::kBlue);
+  EXPECT_FALSE(report.avoidable_fouls[1].location);
+  const std::string text = to_text(report);
+  EXPECT_NE(text.find("avoidable fouls: 2"), std::string::npos) << text;
+  EXPECT_NE(text.find("ATTACKER_DOUBLE_TOUCHED_BALL  yellow robot 4 at (1.50, -2.00), STOP"), std::string::npos)
+      << text;
+  const auto json = nlohmann::json::parse(to_json(report));
+  ASSERT_EQ(json["avoidable_fouls"].size(), 2u);
+  EXPECT_EQ(json["avoidable_fouls"][0]["type"], "ATTACKER_DOUBLE_TOUCHED_BALL");
+  EXPECT_EQ(json["avoidable_fouls"][0]["by_bot"], 4);
+  EXPECT_DOUBLE_EQ(json["avoidable_fouls"][0]["location"][1].get<double>(), -2.0);
+  EXPECT_EQ(json["avoidable_fouls"][1]["location"], nullptr);
+  EXPECT_EQ(json["avoidable_fouls"][1]["command"], "STOP");
+}
+
 TEST(MatchReport, SamplesGoingBackInTimeAreIgnored) {
   MatchReportBuilder builder;
   Script s = small_match();
