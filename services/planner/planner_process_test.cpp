@@ -1,4 +1,4 @@
-// The planner as a real process, end to end through DDS, on its own domains (230, 231; 232 and 171 for the
+// The planner as a real process, end to end through DDS, on its own domains (230, 231; 232 and 188 for the
 // in-process node tests). `sslctl topic pub` stands in for world_model (world.state with robots and a ball)
 // and referee_gateway (referee.state HALT, then STOP); a DDS reader here (and `sslctl topic echo`) reads
 // robot.commands and planner.debug. Checked: HALT gives all-zero commands; STOP keeps every robot at or
@@ -418,11 +418,11 @@ TEST(PlannerNodeInProcess, NonFiniteInputsAreRejectedAndCounted) {
   EXPECT_EQ(node->counters().ticks, 1u);
 }
 
-// The node in-process (domain 171) on a simulated clock that never moves: every world.state is planned on
+// The node in-process (domain 188) on a simulated clock that never moves: every world.state is planned on
 // as soon as it is taken, however soon after the previous tick (no hold-off), and its commands carry that
 // sample's stamp.
 TEST(PlannerNodeInProcess, EveryWorldStateIsPlannedOnAtOnce) {
-  constexpr int kDomain = 171;
+  constexpr int kDomain = 188;
   auto participant = dds::Participant::create({.domain_id = kDomain, .name = "planner_node_at_once_test"});
   ASSERT_TRUE(participant) << participant.error().message;
   time::SimulatedClock clock(time::Timestamp::from_seconds(1.7e9));

@@ -3,7 +3,7 @@
 // unit passes `systemd-analyze verify`, each unit's ExecStart runs exactly as written with its environment
 // file, the Debian package declares its dependencies and installs, each site makes the same services bind
 // what it says, and a discovery server connects participants that multicast would not. Each test uses its
-// own DDS domain (160-169); the tests that need root (network namespaces, installing) skip without it. The
+// own DDS domain (211-223, apart from every other suite's); the tests that need root (network namespaces, installing) skip without it. The
 // field site has DDS Security on: the suite makes its certificates (deploy/dds-certs.sh) and points every
 // process at them ($SSL_CERTS_DIR).
 #include <gmock/gmock.h>
@@ -228,7 +228,7 @@ struct NotifyCase {
   std::string program;
   std::vector<std::string> args;  // private ports: the league's may be in use on this machine
   std::string input;              // the topic it waits to hear before READY ("" none); the test writes it
-  int domain = 160;               // its own for those with an input: no other case's service may feed it
+  int domain = 0;                 // the case's own, as in args: no other case's service may feed it
 };
 
 void PrintTo(const NotifyCase& c, std::ostream* os) { *os << c.program; }
@@ -286,14 +286,15 @@ TEST_P(ServiceManagerTest, AServiceSaysReadyOnceItHearsItsInputsThenFeedsTheWatc
 INSTANTIATE_TEST_SUITE_P(
     EveryService, ServiceManagerTest,
     ::testing::Values(
-        NotifyCase{"simulator", {"--domain", "160", "--robots", "2", "--vision-port", "22160", "--control-port",
-                                 "22161", "--blue-port", "22162", "--yellow-port", "22163", "--grsim-port", "22164"}},
-        NotifyCase{"vision_gateway", {"--domain", "160", "--vision-port", "22165"}},
-        NotifyCase{"referee_gateway", {"--domain", "160", "--referee-port", "22166"}},
-        NotifyCase{"world_model", {"--domain", "166", "--team", "blue"}, "vision.detection", 166},
-        NotifyCase{"planner", {"--domain", "167", "--team", "blue"}, "world.state", 167},
-        NotifyCase{"robot_link", {"--domain", "168", "--team", "blue", "--sim-port", "22167"}, "robot.commands", 168},
-        NotifyCase{"console", {"--domain", "160", "--http-port", "22172"}}),
+        NotifyCase{"simulator", {"--domain", "211", "--robots", "2", "--vision-port", "22160", "--control-port",
+                                 "22161", "--blue-port", "22162", "--yellow-port", "22163", "--grsim-port", "22164"},
+                   "", 211},
+        NotifyCase{"vision_gateway", {"--domain", "212", "--vision-port", "22165"}, "", 212},
+        NotifyCase{"referee_gateway", {"--domain", "213", "--referee-port", "22166"}, "", 213},
+        NotifyCase{"world_model", {"--domain", "214", "--team", "blue"}, "vision.detection", 214},
+        NotifyCase{"planner", {"--domain", "215", "--team", "blue"}, "world.state", 215},
+        NotifyCase{"robot_link", {"--domain", "216", "--team", "blue", "--sim-port", "22167"}, "robot.commands", 216},
+        NotifyCase{"console", {"--domain", "217", "--http-port", "22172"}, "", 217}),
     [](const ::testing::TestParamInfo<NotifyCase>& param) { return param.param.program; });
 
 TEST(ServiceManager, AServiceWhoseInputsNeverAppearIsUpAfterItsGraceAndSaysSo) {
@@ -302,7 +303,7 @@ TEST(ServiceManager, AServiceWhoseInputsNeverAppearIsUpAfterItsGraceAndSaysSo) {
   ASSERT_TRUE(socket.bound()) << socket_path;
   ::setenv("NOTIFY_SOCKET", socket_path.c_str(), 1);
   // A planner alone on its domain: no world model will ever be heard.
-  auto child = ChildProcess::start(bin_dir() / "planner", {"--domain", "169", "--team", "blue"});
+  auto child = ChildProcess::start(bin_dir() / "planner", {"--domain", "218", "--team", "blue"});
   ::unsetenv("NOTIFY_SOCKET");
   ASSERT_TRUE(child) << child.error().message;
   const auto started = std::chrono::steady_clock::now();
@@ -329,9 +330,9 @@ TEST(ServiceManager, WithoutANotifySocketTheServicesRunAsBefore) {
   // Every other process test of the project starts services without NOTIFY_SOCKET; this one says so and
   // checks a service starts and stops cleanly with it unset.
   ::unsetenv("NOTIFY_SOCKET");
-  auto child = ChildProcess::start(bin_dir() / "vision_gateway", {"--domain", "160", "--vision-port", "22168"});
+  auto child = ChildProcess::start(bin_dir() / "vision_gateway", {"--domain", "219", "--vision-port", "22168"});
   ASSERT_TRUE(child) << child.error().message;
-  const auto reports = health_reports({}, 160, 3);
+  const auto reports = health_reports({}, 219, 3);
   child->signal(SIGTERM);
   EXPECT_EQ(child->wait(15s), 0) << child->drain_stderr();
   EXPECT_TRUE(reports.contains("vision_gateway"));
@@ -349,9 +350,9 @@ TEST(ServiceManager, AnOperatorsSslctlReachesServicesRunningAsTheUnitsUser) {
     argv.insert(argv.end(), args.begin(), args.end());
     return ChildProcess::start("/usr/bin/setpriv", argv);
   };
-  auto service = as_user(4242, bin_dir() / "vision_gateway", {"--domain", "165", "--vision-port", "22171"});
+  auto service = as_user(4242, bin_dir() / "vision_gateway", {"--domain", "220", "--vision-port", "22171"});
   ASSERT_TRUE(service) << service.error().message;
-  auto health = as_user(4243, bin_dir() / "sslctl", {"health", "--json", "--listen", "4", "--domain", "165"});
+  auto health = as_user(4243, bin_dir() / "sslctl", {"health", "--json", "--listen", "4", "--domain", "220"});
   ASSERT_TRUE(health) << health.error().message;
   std::string reports;
   while (auto line = health->read_line(15s)) reports += *line + "\n";
@@ -518,12 +519,12 @@ TEST(Units, EachExecStartAsWrittenWithItsEnvironmentFileGivesAHealthyService) {
   // The team's environment file: this test's domain; the rest as installed (site sim).
   const fs::path env_file = prefix.path / "etc/ssl-stack/ssl-stack.env";
   std::string text = read_text(env_file);
-  text = std::regex_replace(text, std::regex("SSL_DOMAIN=0"), "SSL_DOMAIN=162");
+  text = std::regex_replace(text, std::regex("SSL_DOMAIN=0"), "SSL_DOMAIN=221");
   write_text(env_file, text);
   const fs::path units = prefix.path / "lib/systemd/system";
   const std::map<std::string, std::string> env = read_environment_file(
       fs::path(unit_value(units / "ssl-planner@.service", "EnvironmentFile")));
-  ASSERT_EQ(env.at("SSL_DOMAIN"), "162");
+  ASSERT_EQ(env.at("SSL_DOMAIN"), "221");
 
   std::vector<ChildProcess> running;
   const std::vector<std::pair<std::string, std::string>> started{
@@ -540,7 +541,7 @@ TEST(Units, EachExecStartAsWrittenWithItsEnvironmentFileGivesAHealthyService) {
                                           "world_model/blue", "planner/blue",    "console/8080"};
   std::map<std::string, nlohmann::json> reports;
   for (int attempt = 0; attempt < 4; ++attempt) {
-    reports = health_reports(ns->exec_args(bin_dir() / "sslctl", {}), 162, 3);
+    reports = health_reports(ns->exec_args(bin_dir() / "sslctl", {}), 221, 3);
     bool all = true;
     for (const std::string& service : expected) all = all && reports.contains(service);
     if (all) break;
@@ -577,21 +578,21 @@ TEST(Sites, TheSameServicesBindWhatEachSiteSays) {
   auto ns = NetNamespace::create("ssl-test-sites");
   if (!ns) GTEST_SKIP() << ns.error().message;
   // vision_gateway: the simulators' port in sim, SSL-Vision's on the field.
-  EXPECT_THAT(ports_once_bound(*ns, "vision_gateway", {"--site", "sim", "--domain", "163"}, 10020),
+  EXPECT_THAT(ports_once_bound(*ns, "vision_gateway", {"--site", "sim", "--domain", "222"}, 10020),
               ::testing::Contains(10020));
-  EXPECT_THAT(ports_once_bound(*ns, "vision_gateway", {"--site", "field", "--domain", "163"}, 10006),
+  EXPECT_THAT(ports_once_bound(*ns, "vision_gateway", {"--site", "field", "--domain", "222"}, 10006),
               ::testing::Contains(10006));
   // referee_gateway: on the field it listens for the Game Controller on 10003; in sim the built-in referee
   // runs (profile simulation) and sends there, and the gateway reads it as it would read a Game Controller.
-  EXPECT_THAT(ports_once_bound(*ns, "referee_gateway", {"--site", "field", "--domain", "163"}, 10003),
+  EXPECT_THAT(ports_once_bound(*ns, "referee_gateway", {"--site", "field", "--domain", "222"}, 10003),
               ::testing::Contains(10003));
   // The field site's peers, where the site says they are (the field PC, 198.18.0.1), with its DDS Security.
   ASSERT_TRUE(NetNamespace::run_ip({"-n", ns->name(), "addr", "add", "198.18.0.1/15", "dev", "lo"}));
   for (const auto& [site, builtin] : std::vector<std::pair<std::string, bool>>{{"sim", true}, {"field", false}}) {
     auto gateway = ChildProcess::start(NetNamespace::ip(), ns->exec_args(bin_dir() / "referee_gateway",
-                                                                          {"--site", site, "--domain", "163"}));
+                                                                          {"--site", site, "--domain", "222"}));
     ASSERT_TRUE(gateway) << gateway.error().message;
-    auto reports = health_reports(ns->exec_args(bin_dir() / "sslctl", {}), 163, 3, site);
+    auto reports = health_reports(ns->exec_args(bin_dir() / "sslctl", {}), 222, 3, site);
     gateway->signal(SIGTERM);
     EXPECT_EQ(gateway->wait(15s), 0) << gateway->drain_stderr();
     ASSERT_TRUE(reports.contains("referee_gateway")) << site;
@@ -617,7 +618,7 @@ TEST(Sites, RobotLinkDrivesTheSimulatorInSimGrSimOnGrSimAndTheRadioOnTheField) {
   }
   // The field's radio is the USB base station; without one here robot_link says which device it wanted.
   auto field = ChildProcess::start(bin_dir() / "robot_link",
-                                   {"--team", "blue", "--site", "field", "--domain", "163", "--set",
+                                   {"--team", "blue", "--site", "field", "--domain", "222", "--set",
                                     "radio.device=" + (dir.path / "no-base-station").string(), "estop_device=\"\""});
   ASSERT_TRUE(field);
   EXPECT_EQ(field->wait(15s), 1);
@@ -642,12 +643,12 @@ TEST(Discovery, ClientsOfADiscoveryServerFindEachOtherThroughItAndOnlyThroughIt)
 
   const auto exchange = [&](const std::string& site, double timeout_s) {
     auto echo = ChildProcess::start(bin_dir() / "sslctl", {"topic", "echo", "system.estop", "--count", "1", "--timeout",
-                                                           std::to_string(timeout_s), "--domain", "164", "--site",
+                                                           std::to_string(timeout_s), "--domain", "223", "--site",
                                                            (dir.path / site).string()});
     auto pub = ChildProcess::start(bin_dir() / "sslctl",
                                    {"topic", "pub", "system.estop", R"({"engaged": true, "source": "deploy_test"})",
                                     "--wait-readers", "1", "--wait-timeout", std::to_string(timeout_s), "--linger", "1",
-                                    "--domain", "164", "--site", (dir.path / site).string()});
+                                    "--domain", "223", "--site", (dir.path / site).string()});
     std::optional<std::string> line = echo ? echo->read_line(std::chrono::seconds(static_cast<int>(timeout_s) + 10))
                                            : std::nullopt;
     if (pub) (void)pub->wait(std::chrono::seconds(static_cast<int>(timeout_s) + 10));
