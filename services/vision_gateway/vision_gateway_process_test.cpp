@@ -339,9 +339,9 @@ TEST(VisionGatewayProcess, SilentGroupIsReportedAsWarn) {
   HealthWatch health_watch(domain);
   const auto health = health_watch.wait([](const auto&) { return true; });
   ASSERT_TRUE(health);
-  EXPECT_EQ(health->level(), idl::system::HEALTH_WARN);
+  EXPECT_EQ(health->level(), idl::system::HEALTH_WARN) << health->status() << "; errors " << health->errors();
   EXPECT_NE(health->status().find("no vision"), std::string::npos) << health->status();
-  EXPECT_EQ(health->rate_hz(), 0.0);
+  EXPECT_EQ(health->rate_hz(), 0.0) << health->status();
   stop(gateway);
 }
 
