@@ -30,6 +30,13 @@ constexpr double kStrategyGap = 0.1;           // s without a strategy tick: pla
 constexpr double kHoldApproachSpeed = 0.5;     // m/s faster than the ball the holder takes it with
 constexpr double kKickFacing = 0.1;            // rad: a holder facing its kick this well kicks (behind_ball_facing)
 constexpr double kTurnAreaClearance = 0.15;    // m: a ball this near their defense area is not turned with
+// What a shot is worth by its distance from their goal centre (shot_quality): in full up to kShotFullUpTo,
+// nothing from kShotWorthlessFrom. bench/match_series --robots 11 (base against base, seeds 51-90, two 120 s
+// halves, realistic), with shots valued up to 7 m: of the shots from under 3 m 41 % went in (at once or after
+// the keeper touched them), from 3-5 m 12 %, from 5-7 m none, from farther 1 in 335; valued up to 4.5 m,
+// 1.68 goals a match instead of 1.35 (up to 4 m: 1.60, up to 5.5 m: 1.74).
+constexpr double kShotFullUpTo = 2.0;         // m
+constexpr double kShotWorthlessFrom = 4.5;    // m
 constexpr double kRedirectGrid = 0.25;         // m between the points it rates
 constexpr double kRedirectBack = 0.25;         // m behind the ball a point may lie, at most
 constexpr double kRedirectRange = 1.8;         // m from their goal centre beyond their defense area's depth
@@ -263,7 +270,7 @@ MotionIntent redirect_at(const Situation& s, const TeamPlayMemory& m, const wm::
 double shot_quality(const Situation& s, const Vec2& from, std::optional<std::uint32_t> shooter) {
   const double distance = (s.field.their_goal_center() - from).norm();
   const double open = std::min(1.0, goal_opening(s, from, shooter).width / 0.25);
-  return open * std::clamp((kShotRange - distance) / 5.0, 0.0, 1.0);
+  return open * std::clamp((kShotWorthlessFrom - distance) / (kShotWorthlessFrom - kShotFullUpTo), 0.0, 1.0);
 }
 
 std::optional<PassOption> rate_pass(const Situation& s, std::uint32_t receiver, const Vec2& point,
