@@ -3,8 +3,8 @@
 // unit passes `systemd-analyze verify`, each unit's ExecStart runs exactly as written with its environment
 // file, the Debian package declares its dependencies and installs, each site makes the same services bind
 // what it says, and a discovery server connects participants that multicast would not. Each test uses its
-// own DDS domain (211-223, apart from every other suite's); the tests that need root (network namespaces, installing) skip without it. The
-// field site has DDS Security on: the suite makes its certificates (deploy/dds-certs.sh) and points every
+// own DDS domain (211-223, apart from every other suite's); the tests that need root (network namespaces,
+// installing) skip without it. The field site has DDS Security on: the suite makes its certificates (deploy/dds-certs.sh) and points every
 // process at them ($SSL_CERTS_DIR).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -228,7 +228,12 @@ struct NotifyCase {
   std::string program;
   std::vector<std::string> args;  // private ports: the league's may be in use on this machine
   std::string input;              // the topic it waits to hear before READY ("" none); the test writes it
-  int domain = 0;                 // the case's own, as in args: no other case's service may feed it
+
+  /// The case's own DDS domain (its --domain): no other case's service may feed it.
+  int domain() const {
+    const auto flag = std::find(args.begin(), args.end(), "--domain");
+    return flag != args.end() && std::next(flag) != args.end() ? std::stoi(*std::next(flag)) : 0;
+  }
 };
 
 void PrintTo(const NotifyCase& c, std::ostream* os) { *os << c.program; }
@@ -252,7 +257,7 @@ TEST_P(ServiceManagerTest, AServiceSaysReadyOnceItHearsItsInputsThenFeedsTheWatc
   if (!GetParam().input.empty()) {
     EXPECT_THAT(*first, Not(HasSubstr("READY=1"))) << "READY before its input " << GetParam().input << " was heard";
     EXPECT_THAT(*first, HasSubstr("waiting for its inputs"));
-    auto created = dds::Participant::create({.domain_id = GetParam().domain, .name = "deploy_test/input"});
+    auto created = dds::Participant::create({.domain_id = GetParam().domain(), .name = "deploy_test/input"});
     ASSERT_TRUE(created) << created.error().message;
     participant.emplace(std::move(*created));
     ASSERT_TRUE(dds::visit_topic(GetParam().input, [&](const auto& spec) {
@@ -287,14 +292,13 @@ INSTANTIATE_TEST_SUITE_P(
     EveryService, ServiceManagerTest,
     ::testing::Values(
         NotifyCase{"simulator", {"--domain", "211", "--robots", "2", "--vision-port", "22160", "--control-port",
-                                 "22161", "--blue-port", "22162", "--yellow-port", "22163", "--grsim-port", "22164"},
-                   "", 211},
-        NotifyCase{"vision_gateway", {"--domain", "212", "--vision-port", "22165"}, "", 212},
-        NotifyCase{"referee_gateway", {"--domain", "213", "--referee-port", "22166"}, "", 213},
-        NotifyCase{"world_model", {"--domain", "214", "--team", "blue"}, "vision.detection", 214},
-        NotifyCase{"planner", {"--domain", "215", "--team", "blue"}, "world.state", 215},
-        NotifyCase{"robot_link", {"--domain", "216", "--team", "blue", "--sim-port", "22167"}, "robot.commands", 216},
-        NotifyCase{"console", {"--domain", "217", "--http-port", "22172"}, "", 217}),
+                                 "22161", "--blue-port", "22162", "--yellow-port", "22163", "--grsim-port", "22164"}},
+        NotifyCase{"vision_gateway", {"--domain", "212", "--vision-port", "22165"}},
+        NotifyCase{"referee_gateway", {"--domain", "213", "--referee-port", "22166"}},
+        NotifyCase{"world_model", {"--domain", "214", "--team", "blue"}, "vision.detection"},
+        NotifyCase{"planner", {"--domain", "215", "--team", "blue"}, "world.state"},
+        NotifyCase{"robot_link", {"--domain", "216", "--team", "blue", "--sim-port", "22167"}, "robot.commands"},
+        NotifyCase{"console", {"--domain", "217", "--http-port", "22172"}}),
     [](const ::testing::TestParamInfo<NotifyCase>& param) { return param.param.program; });
 
 TEST(ServiceManager, AServiceWhoseInputsNeverAppearIsUpAfterItsGraceAndSaysSo) {
