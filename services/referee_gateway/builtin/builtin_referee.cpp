@@ -349,6 +349,7 @@ BuiltinReferee::CleanObservation BuiltinReferee::clean(const Observation& observ
   }
   estimate_robot_velocities(seen, now);
   seen.touch = toucher(seen, kTouchMargin);
+  seen.touch_in_reach = seen.touch.has_value();
   if (!seen.touch && interval && previous_ball) seen.touch = deflected_by(seen, *previous_ball, *interval);
   if (seen.ball) last_ball_velocity_ = seen.ball_velocity;
   return seen;

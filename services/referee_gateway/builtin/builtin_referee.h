@@ -242,6 +242,8 @@ class BuiltinReferee {
     /// The robot touching the ball in this observation: in reach now (toucher), or the one the ball
     /// bounced off since the previous observation (deflected_by).
     std::optional<Touch> touch;
+    /// The touch is a robot in reach now (toucher), not one read off a change of the ball's velocity.
+    bool touch_in_reach = false;
   };
 
   // The state machine's one transition function.

@@ -1310,6 +1310,27 @@ TEST(BuiltinReferee, ABallBouncingOffARobotBetweenTwoObservationsIsThatRobotsTou
   }
 }
 
+TEST(BuiltinReferee, AVelocityJumpBesideTheKickerBehindItsBallIsNoDoubleTouch) {
+  // Yellow 2's free kick runs away from it at 2.5 m/s along +x (in play at 0.06 m), yellow 2 following 0.2 m
+  // behind: released. One noisy observation puts the ball 4 cm back; from there the velocity differentiated
+  // from the positions runs back towards yellow 2, so the next change of velocity (8 m/s) has a path within
+  // its reach. Yellow 2 never reached the ball: no double touch. When it then drives into the ball, it is one.
+  const auto seen = [](Vec2 ball, std::vector<ObservedRobot> robots) {
+    return Observation{.ball_position = ball, .ball_velocity = std::nullopt, .robots = std::move(robots)};
+  };
+  for (const bool reaches : {false, true}) {
+    BuiltinReferee referee = referee_after_free_kick();
+    const double observed[] = {0.085, 0.11, 0.095, 0.16, 0.185};  // truly 0.085 + 0.025 i
+    for (int i = 0; i < 5; ++i) {
+      const double truth = 0.085 + 0.025 * i;
+      referee.step(seen({observed[i], 0}, {yellow(2, {truth - 0.2, 0})}), at(1.11 + 0.01 * i));
+    }
+    EXPECT_EQ(referee.state().yellow.foul_counter, 0u) << "the ball's path drawn back by noise";
+    if (reaches) referee.step(seen({0.3, 0}, {yellow(2, {0.19, 0})}), at(1.2));
+    EXPECT_EQ(referee.state().yellow.foul_counter, reaches ? 1u : 0u);
+  }
+}
+
 TEST(BuiltinReferee, TheKickerStayingInContactCountsOnlyBeyondTheDistance) {
   for (const auto& [travel, foul] : {std::pair{0.04, false}, std::pair{0.06, true}}) {
     // Yellow 2 pushes the ball from (0, 0) without letting go: in play at 0.06 m, then `travel` further.
