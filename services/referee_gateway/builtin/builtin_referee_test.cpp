@@ -40,6 +40,11 @@ Observation ball_at(Vec2 ball, std::vector<ObservedRobot> robots = {}) {
   return {.ball_position = ball, .ball_velocity = Vec2::Zero(), .robots = std::move(robots)};
 }
 
+/// As SSL-Vision sees it: no measured ball velocity, the referee differentiates the positions.
+Observation seen(Vec2 ball, std::vector<ObservedRobot> robots) {
+  return {.ball_position = ball, .ball_velocity = std::nullopt, .robots = std::move(robots)};
+}
+
 /// A referee in NORMAL_FIRST_HALF with the ball in play (FORCE_START at t = 0).
 BuiltinReferee running_referee(RefereeProfile profile) {
   BuiltinReferee referee(std::move(profile), FieldGeometry::division_b(),
@@ -1292,9 +1297,6 @@ TEST(BuiltinReferee, ABallBouncingOffARobotBetweenTwoObservationsIsThatRobotsTou
   // observations 10 ms apart: seen 0.15 m and then 0.14 m from blue 4's centre, never within its reach
   // (0.13 m), but its velocity turned. Then yellow 2 plays it again: no double touch, blue 4 touched it.
   // No measured ball velocity (as from SSL-Vision): the referee differentiates the positions.
-  const auto seen = [](Vec2 ball, std::vector<ObservedRobot> robots) {
-    return Observation{.ball_position = ball, .ball_velocity = std::nullopt, .robots = std::move(robots)};
-  };
   for (const bool bounced : {true, false}) {
     BuiltinReferee referee = referee_after_free_kick();
     // Without the bounce blue 4 stands 0.2 m off the ball's line and the ball rolls on past it.
@@ -1315,9 +1317,6 @@ TEST(BuiltinReferee, AVelocityJumpBesideTheKickerBehindItsBallIsNoDoubleTouch) {
   // behind: released. One noisy observation puts the ball 4 cm back; from there the velocity differentiated
   // from the positions runs back towards yellow 2, so the next change of velocity (8 m/s) has a path within
   // its reach. Yellow 2 never reached the ball: no double touch. When it then drives into the ball, it is one.
-  const auto seen = [](Vec2 ball, std::vector<ObservedRobot> robots) {
-    return Observation{.ball_position = ball, .ball_velocity = std::nullopt, .robots = std::move(robots)};
-  };
   for (const bool reaches : {false, true}) {
     BuiltinReferee referee = referee_after_free_kick();
     const double observed[] = {0.085, 0.11, 0.095, 0.16, 0.185};  // truly 0.085 + 0.025 i
